@@ -1,0 +1,77 @@
+// The material interface: the C++ layer that the particle loops of src/ call.
+//
+// A Material owns the parameters of one material region and updates the stress of its particles.
+// Calls are per batch, never per particle: UpdateStress receives the raw DMSwarm field arrays and
+// loops over the particles whose material id matches, so parameter lookups, virtual dispatch and
+// model choices are hoisted out of the particle loop (STYLE.md 2.3).
+//
+// A model that needs per-particle state registers it as DMSwarm fields in RegisterFields and finds
+// it again through MaterialPointFields::extra (by the name it registered), so a new model brings its
+// own state without touching the core.
+//
+// Adding a model: write one file models/<family>/<name>.cxx with a class derived from Material and a
+// create function, then add one line to models/registry.cxx.
+#pragma once
+#include "../src/petsc_compat.hpp"
+#include <petscdm.h>
+#include <petscdmswarm.h>
+#include <map>
+#include <string>
+
+namespace burst {
+
+// Views of the swarm fields that a stress update may read or write for the local particles.
+// Tensors are row-major 3x3 in every dimension: in 2-D the zz entries carry plane strain.
+struct MaterialPointFields {
+  PetscInt         n        = 0;       // local particle count
+  const PetscInt  *material = nullptr; // material id per particle
+  const PetscReal *L        = nullptr; // velocity gradient at t_{n+1/2}, 1/s
+  const PetscReal *F        = nullptr; // deformation gradient at t_{n+1} (already updated)
+  const PetscReal *F_old    = nullptr; // deformation gradient at t_n
+  PetscReal       *stress   = nullptr; // Cauchy stress, Pa (in: t_n, out: t_{n+1})
+  const PetscReal *mass     = nullptr; // kg
+  const PetscReal *volume   = nullptr; // current volume, m^3
+  PetscReal       *temperature = nullptr; // K
+  PetscReal       *wave_speed  = nullptr; // out: longitudinal wave speed, m/s
+  PetscReal       *internal_energy = nullptr; // in/out: accumulated stress work, J
+  std::map<std::string, void *> extra;        // model-registered fields by name
+};
+
+class Material {
+public:
+  virtual ~Material() = default;
+  // Reads the options under `-<name>_`: density plus the model's own parameters.
+  virtual PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) = 0;
+  // Registers the model's per-particle state; called before DMSwarmFinalizeFieldRegister.
+  virtual PetscErrorCode RegisterFields(DM swarm) { (void)swarm; return PETSC_SUCCESS; }
+  // Sets the model state of newly seeded particles [begin, end).
+  virtual PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) { (void)swarm; (void)begin; (void)end; return PETSC_SUCCESS; }
+  // Stress update over the particles with material == id: sigma_{n+1} from sigma_n, L, F, dt.
+  // Also writes the wave speed and adds the stress work 0.5 (sigma_n + sigma_{n+1}) : D V dt.
+  virtual PetscErrorCode UpdateStress(const MaterialPointFields &f, PetscInt id, PetscReal dt) = 0;
+  // Wave speed of the particles at their current state (used before the first stress update).
+  virtual PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) = 0;
+  // Prints every parameter with its unit.
+  virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+
+  const char *Name() const { return name_.c_str(); }
+  const char *Model() const { return model_.c_str(); }
+  PetscReal   Density() const { return density_; }
+
+  std::string name_;         // user's name, also the options prefix
+  std::string model_;        // registered model name
+  PetscReal   density_ = -1; // reference mass density, kg/m^3
+};
+
+using MaterialCreateFn = PetscErrorCode (*)(Material **);
+
+// Registry of material models (PetscFunctionList keyed by snake_case model names).
+PetscErrorCode MaterialRegisterAll();
+PetscErrorCode MaterialRegister(const char name[], MaterialCreateFn create);
+PetscErrorCode MaterialCreate(MPI_Comm comm, const char name[], Material **material);
+PetscErrorCode MaterialRegistryDestroy();
+
+// Reads `-<prefix>_density` (required, > 0). Shared by every model.
+PetscErrorCode MaterialReadDensity(PetscOptionItems *PetscOptionsObject, Material &m);
+
+} // namespace burst

@@ -1,0 +1,180 @@
+#include "analytic.hpp"
+#include "util.hpp"
+#include <cmath>
+
+namespace burst {
+
+class BarMode final : public AnalyticSolution {
+public:
+  PetscReal length = 25, amplitude = 0.1, wave_number = 0, frequency = 0;
+  const char *Name() const override { return "bar_mode"; }
+  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  {
+    for (int d = 0; d < 3; ++d) u[d] = 0;
+    u[0] = amplitude / frequency * std::sin(frequency * t) * std::sin(wave_number * X[0]);
+  }
+  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override
+  {
+    for (int d = 0; d < 3; ++d) v[d] = 0;
+    v[0] = amplitude * std::cos(frequency * t) * std::sin(wave_number * X[0]);
+  }
+  void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
+  {
+    for (int a = 0; a < 9; ++a) F[a] = (a % 4 == 0) ? 1.0 : 0.0;
+    F[0] += amplitude / frequency * std::sin(frequency * t) * wave_number * std::cos(wave_number * X[0]);
+  }
+};
+
+class AxisAligned final : public AnalyticSolution {
+public:
+  PetscReal amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
+  const char *Name() const override { return "axis_aligned"; }
+  // Phase of each displacement component: 0, 2 pi/3, 4 pi/3 (W&G 2008).
+  PetscReal Phase(int d) const { return d * 2.0 * PETSC_PI / 3.0; }
+  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  {
+    for (int d = 0; d < 3; ++d) u[d] = d < dim ? amplitude * std::sin(PETSC_PI * X[d]) * std::sin(c * PETSC_PI * t + Phase(d)) : 0;
+  }
+  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override
+  {
+    for (int d = 0; d < 3; ++d) v[d] = d < dim ? amplitude * c * PETSC_PI * std::sin(PETSC_PI * X[d]) * std::cos(c * PETSC_PI * t + Phase(d)) : 0;
+  }
+  void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
+  {
+    for (int a = 0; a < 9; ++a) F[a] = (a % 4 == 0) ? 1.0 : 0.0;
+    for (int d = 0; d < dim; ++d) F[4 * d] += amplitude * PETSC_PI * std::cos(PETSC_PI * X[d]) * std::sin(c * PETSC_PI * t + Phase(d));
+  }
+  bool HasBodyForce() const override { return true; }
+  // b_d = pi^2 u_d [mu/rho0 - c^2 - (lambda (ln J - 1) - mu) / (rho0 F_dd^2)]  (verification.md 1.3)
+  void BodyForce(const PetscReal X[], PetscReal t, PetscReal b[]) const override
+  {
+    PetscReal u[3], F[9];
+    Displacement(X, t, u);
+    DeformationGradient(X, t, F);
+    const PetscReal J = F[0] * F[4] * F[8], lnJ = std::log(J);
+    for (int d = 0; d < 3; ++d) {
+      const PetscReal Fdd = F[4 * d];
+      b[d] = d < dim ? PETSC_PI * PETSC_PI * u[d] * (mu / rho0 - c * c - (lambda * (lnJ - 1) - mu) / (rho0 * Fdd * Fdd)) : 0;
+    }
+  }
+};
+
+static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned"};
+
+PetscErrorCode CreateAnalyticSolution(Simulation &sim)
+{
+  int       type = 0;
+  char      material[256] = "";
+  PetscBool has_material = PETSC_FALSE;
+  PetscReal amplitude = -1, length = -1;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Analytic solutions for verification", "Analytic");
+  PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 3, &type, nullptr));
+  PetscCall(PetscOptionsString("-analytic_material", "Material whose parameters the analytic solution uses (default: the first of -materials)", "", material, material, sizeof(material), &has_material));
+  PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05)", "", amplitude, &amplitude, nullptr));
+  PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25", "", length, &length, nullptr));
+  PetscOptionsEnd();
+  if (type == 0) PetscFunctionReturn(PETSC_SUCCESS);
+
+  const Material *m = sim.materials[0].get();
+  if (has_material) {
+    m = nullptr;
+    for (auto &mm : sim.materials)
+      if (mm->name_ == material) m = mm.get();
+    PetscCheck(m, sim.comm, PETSC_ERR_USER_INPUT, "Option -analytic_material %s is not one of -materials", material);
+  }
+  PetscReal E = 0, nu = 0;
+  PetscBool setE = PETSC_FALSE;
+  PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-youngs_modulus", &E, &setE));
+  PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-poisson_ratio", &nu, nullptr));
+  PetscCheck(setE, sim.comm, PETSC_ERR_USER_INPUT, "-analytic %s needs an elastic material with -%s_youngs_modulus", AnalyticNames[type], m->Name());
+  if (type == 1) {
+    auto bar         = std::make_unique<BarMode>();
+    bar->amplitude   = amplitude > 0 ? amplitude : 0.1;
+    bar->length      = length > 0 ? length : 25;
+    bar->wave_number = PETSC_PI / (2 * bar->length);
+    bar->frequency   = bar->wave_number * std::sqrt(E / m->Density());
+    sim.analytic     = std::move(bar);
+  } else {
+    auto mms       = std::make_unique<AxisAligned>();
+    mms->amplitude = amplitude > 0 ? amplitude : 0.05;
+    mms->mu        = E / (2 * (1 + nu));
+    mms->lambda    = E / (3 * (1 - 2 * nu)) - 2.0 * mms->mu / 3.0;
+    mms->rho0      = m->Density();
+    mms->c         = std::sqrt(E / mms->rho0);
+    sim.analytic   = std::move(mms);
+  }
+  sim.analytic->dim = sim.grid.dim;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Moves every particle to X + u(X, 0) with the exact velocity and deformation gradient.
+PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
+{
+  PetscInt   n, dim = sim.grid.dim;
+  PetscReal *x, *X0, *v, *F, *vol, *vol0;
+  PetscFunctionBeginUser;
+  if (!sim.analytic) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+  PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal X[3] = {0, 0, 0}, u[3], vel[3];
+    for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
+    sim.analytic->Displacement(X, 0, u);
+    sim.analytic->Velocity(X, 0, vel);
+    sim.analytic->DeformationGradient(X, 0, F + 9 * p);
+    for (PetscInt d = 0; d < dim; ++d) {
+      x[p * dim + d] = X[d] + u[d];
+      v[p * dim + d] = vel[d];
+    }
+    const PetscReal *f = F + 9 * p;
+    const PetscReal  J = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) + f[2] * (f[3] * f[7] - f[4] * f[6]);
+    vol[p]             = vol0[p] * J;
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscReal *max)
+{
+  PetscInt   n, dim = sim.grid.dim;
+  PetscReal *x, *X0, *mass;
+  PetscReal  local[3] = {0, 0, 0}, global[3]; // sum m e^2, sum m, max e
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal X[3] = {0, 0, 0}, u[3], e2 = 0;
+    for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
+    sim.analytic->Displacement(X, sim.time, u);
+    for (PetscInt d = 0; d < dim; ++d) {
+      const PetscReal e = x[p * dim + d] - X[d] - u[d];
+      e2 += e * e;
+    }
+    local[0] += mass[p] * e2;
+    local[1] += mass[p];
+    local[2] = PetscMax(local[2], std::sqrt(e2));
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&local[2], &global[2], 1, MPIU_REAL, MPI_MAX, sim.comm));
+  *rms = std::sqrt(global[0] / global[1]);
+  *max = global[2];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

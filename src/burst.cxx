@@ -1,0 +1,119 @@
+static const char help[] = "burst: material point method (MPM) for metal containers that deform, fail and fragment under\n"
+                           "high-rate loading. Configure a run with PETSc options, usually an option file:\n"
+                           "  build/burst -options_file options/scenes/colliding_disks.opts\n"
+                           "Units are SI throughout (m, kg, s, Pa, K).\n\n";
+
+// Sample runs:
+//   build/burst -options_file options/scenes/colliding_disks.opts
+//   mpiexec -n 2 build/burst -options_file options/scenes/block3d.opts -log_view
+//   build/burst -options_file tests/decks/bar_vibration.opts -mpm_shape_type ugimp
+//
+// The flow of one run: options -> grid -> materials -> particles -> [step, monitor, output]* ->
+// summary. One time step is src/step.cxx.
+#include "simulation.hpp"
+#include "geometry.hpp"
+#include "analytic.hpp"
+
+using namespace burst;
+
+static PetscErrorCode RegisterLogging(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStageRegister("Setup", &sim.stage_setup));
+  PetscCall(PetscLogStageRegister("Stepping", &sim.stage_step));
+  PetscCall(PetscLogStageRegister("Output", &sim.stage_output));
+  PetscClassId id;
+  PetscCall(PetscClassIdRegister("burst", &id));
+  PetscCall(PetscLogEventRegister("MPM_P2G", id, &sim.ev_p2g));
+  PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.ev_grid));
+  PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.ev_g2p));
+  PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.ev_stress));
+  PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
+  PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));
+  PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.ev_monitor));
+  PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.ev_output));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode SetUp(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogStagePush(sim.stage_setup));
+  // 1. Run control and the background grid
+  PetscCall(ReadRunOptions(sim));
+  PetscCall(CreateGrid(sim));
+  // 2. Materials, load curves and the geometry objects that seed particles
+  PetscCall(CreateMaterials(sim));
+  PetscCall(ReadLoadCurves(sim));
+  PetscCall(ReadGeometries(sim));
+  PetscCall(CreateAnalyticSolution(sim));
+  // 3. Particles
+  PetscCall(CreateSwarm(sim));
+  PetscCall(SeedParticles(sim));
+  PetscCall(ApplyAnalyticInitialCondition(sim));
+  PetscCall(MigrateParticles(sim));
+  PetscCall(ComputeInitialWaveSpeed(sim));
+  PetscCall(CheckParticleState(sim, "seeding"));
+  PetscCall(OutputSetUp(sim));
+  PetscCall(PetscLogStagePop());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode View(Simulation &sim)
+{
+  PetscViewer viewer = PETSC_VIEWER_STDOUT_(sim.comm);
+  const Grid &g      = sim.grid;
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "burst: scene %s, %" PetscInt_FMT "-D, %d rank(s)\n", sim.scene.c_str(), g.dim, sim.size));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1], g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.final_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.total_particles));
+  for (auto &m : sim.materials) PetscCall(m->View(viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode Run(Simulation &sim)
+{
+  PetscLogDouble t0, t1;
+  PetscFunctionBeginUser;
+  PetscCall(MonitorSetUp(sim));
+  PetscCall(Monitor(sim, PETSC_TRUE));
+  PetscCall(PetscLogStagePush(sim.stage_output));
+  PetscCall(WriteOutput(sim));
+  PetscCall(PetscLogStagePop());
+  PetscCall(PetscTime(&sim.wall_start));
+  while (sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps) {
+    PetscCall(PetscTime(&t0));
+    PetscCall(PetscLogStagePush(sim.stage_step));
+    PetscCall(TakeStep(sim));
+    PetscCall(PetscLogStagePop());
+    PetscCall(PetscTime(&t1));
+    sim.wall_stepping += t1 - t0;
+    const bool last = !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
+    PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
+    if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
+      PetscCall(PetscLogStagePush(sim.stage_output));
+      PetscCall(WriteOutput(sim));
+      PetscCall(PetscLogStagePop());
+    }
+  }
+  PetscCall(WriteSummary(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+int main(int argc, char **argv)
+{
+  PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
+  {
+    Simulation sim;
+    PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
+    PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+    PetscCall(RegisterLogging(sim));
+    PetscCall(SetUp(sim));
+    PetscCall(View(sim));
+    PetscCall(Run(sim));
+  }
+  PetscCall(MaterialRegistryDestroy());
+  PetscCall(PetscFinalize());
+  return 0;
+}

@@ -1,0 +1,225 @@
+// Conserved-quantity monitor (screen + monitor.csv) and the end-of-run summary.json.
+//
+// Energy balance: kinetic + internal (stress work) + removed - external work stays equal to its
+// initial value for a conservative scheme; the relative balance error divides the drift by the
+// largest energy seen (kinetic + internal + |external work|).
+#include "../simulation.hpp"
+#include "../analytic.hpp"
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace burst {
+
+namespace {
+FILE     *csv          = nullptr;
+PetscReal energy_scale = 0;
+PetscLogDouble last_progress = 0;
+} // namespace
+
+PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
+{
+  PetscInt         n, dim = sim.grid.dim;
+  const PetscReal *v, *m, *e;
+  PetscReal        local[8] = {0, 0, 0, 0, 0, 0, 0, 0}, global[8];
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal v2 = 0;
+    for (PetscInt d = 0; d < dim; ++d) {
+      v2 += v[dim * p + d] * v[dim * p + d];
+      local[3 + d] += m[p] * v[dim * p + d];
+    }
+    local[0] += 0.5 * m[p] * v2;
+    local[1] += e[p];
+    local[6] += m[p];
+  }
+  local[2] = sim.diag.external_work;
+  local[7] = sim.diag.removed_energy;
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCallMPI(MPI_Allreduce(local, global, 8, MPIU_REAL, MPI_SUM, sim.comm));
+  r.kinetic       = global[0];
+  r.internal      = global[1];
+  r.external_work = global[2];
+  r.removed       = global[7];
+  r.total         = r.kinetic + r.internal + r.removed;
+  for (int d = 0; d < 3; ++d) r.momentum[d] = global[3 + d];
+  r.mass         = global[6];
+  energy_scale   = PetscMax(energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
+  r.balance_error = energy_scale > 0 ? (r.total - r.external_work - sim.diag.initial_energy) / energy_scale : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Position and displacement of the tracked particle (-monitor_track_pid), gathered to every rank.
+static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[6])
+{
+  PetscInt          n, dim = sim.grid.dim;
+  const PetscReal  *x, *X0;
+  const PetscInt64 *pid;
+  PetscReal         local[7] = {0, 0, 0, 0, 0, 0, 0}, global[7];
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  for (PetscInt p = 0; p < n; ++p)
+    if (pid[p] == sim.track_pid) {
+      for (PetscInt d = 0; d < dim; ++d) {
+        local[d]     = x[dim * p + d];
+        local[3 + d] = x[dim * p + d] - X0[dim * p + d];
+      }
+      local[6] = 1;
+    }
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCallMPI(MPI_Allreduce(local, global, 7, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCheck(global[6] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids run from 0 to %" PetscInt64_FMT ")", sim.track_pid, sim.next_pid - 1);
+  for (int k = 0; k < 6; ++k) xu[k] = global[k];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MonitorSetUp(Simulation &sim)
+{
+  EnergyReport r;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeEnergies(sim, r));
+  sim.diag.initial_energy = r.total - r.external_work;
+  if (!sim.rank) {
+    const std::string path = sim.output_dir + "/monitor.csv";
+    csv                    = std::fopen(path.c_str(), "w");
+    PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
+    std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles");
+    if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
+    if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz");
+    std::fprintf(csv, "\n");
+  }
+  PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
+  PetscCall(PetscTime(&last_progress));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode Monitor(Simulation &sim, PetscBool force)
+{
+  EnergyReport r;
+  PetscFunctionBeginUser;
+  if (sim.progress) {
+    PetscLogDouble now;
+    PetscCall(PetscTime(&now));
+    if (now - last_progress > 10.0) {
+      const PetscReal fraction = sim.time / sim.final_time, elapsed = now - sim.wall_start;
+      PetscCall(PetscPrintf(sim.comm, "  progress: %5.1f%% of the final time, step %" PetscInt_FMT ", %.0f s elapsed, about %.0f s left\n", 100.0 * fraction, sim.step, elapsed, fraction > 0 ? elapsed * (1 - fraction) / fraction : 0.0));
+      last_progress = now;
+    }
+  }
+  if (!force && sim.step % sim.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(sim.ev_monitor, 0, 0, 0, 0));
+  PetscCall(ComputeEnergies(sim, r));
+  PetscReal rms = 0, max = 0, track[6] = {0, 0, 0, 0, 0, 0};
+  if (sim.analytic) {
+    PetscCall(AnalyticDisplacementError(sim, &rms, &max));
+    sim.diag.max_error_displacement  = PetscMax(sim.diag.max_error_displacement, rms);
+    sim.diag.last_error_displacement = rms;
+  }
+  if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
+  PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
+  if (!sim.rank && csv) {
+    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
+    if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
+    if (sim.track_pid >= 0)
+      for (int k = 0; k < 6; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
+    std::fprintf(csv, "\n");
+    std::fflush(csv);
+  }
+  PetscCall(PetscLogEventEnd(sim.ev_monitor, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Bytes of swarm storage per particle: the sum over registered fields of block size x type size.
+static PetscErrorCode BytesPerParticle(Simulation &sim, PetscInt *bytes)
+{
+  PetscInt nfields = 0;
+  PetscFunctionBeginUser;
+  *bytes = 0;
+  const char *names[] = {DMSwarmField_pid, DMSwarmField_rank, DMSwarmPICField_coor, DMSwarmPICField_cellid, field::velocity, field::mass, field::volume, field::volume0, field::position0, field::half_width0, field::F, field::stress, field::L, field::temperature, field::wave_speed, field::internal_energy, field::external_force, field::traction_area0, field::load_curve, field::material};
+  for (const char *name : names) {
+    PetscInt      bs;
+    PetscDataType type;
+    void         *data;
+    size_t        size;
+    PetscCall(DMSwarmGetField(sim.swarm, name, &bs, &type, &data));
+    PetscCall(DMSwarmRestoreField(sim.swarm, name, &bs, &type, &data));
+    PetscCall(PetscDataTypeGetSize(type, &size));
+    *bytes += bs * (PetscInt)size;
+    ++nfields;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WriteSummary(Simulation &sim)
+{
+  EnergyReport r;
+  PetscInt     bytes;
+  PetscFunctionBeginUser;
+  PetscCall(ComputeEnergies(sim, r));
+  PetscCall(BytesPerParticle(sim, &bytes));
+  PetscReal rms = 0, max = 0;
+  if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
+  PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
+  PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
+  if (sim.rank) PetscFunctionReturn(PETSC_SUCCESS);
+  if (csv) {
+    std::fclose(csv);
+    csv = nullptr;
+  }
+  std::ostringstream s;
+  s.precision(10);
+  s << "{\n";
+  s << "  \"scene\": \"" << sim.scene << "\",\n";
+  s << "  \"dim\": " << sim.grid.dim << ",\n";
+  s << "  \"ranks\": " << sim.size << ",\n";
+  s << "  \"cells\": [" << sim.grid.cells[0] << ", " << sim.grid.cells[1] << ", " << (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) << "],\n";
+  s << "  \"shape\": \"" << ShapeTypeNames[(int)sim.shape] << "\",\n";
+  s << "  \"scheme\": \"" << StepSchemeNames[(int)sim.scheme] << "\",\n";
+  s << "  \"flip_fraction\": " << sim.flip_fraction << ",\n";
+  s << "  \"particles\": " << sim.total_particles << ",\n";
+  s << "  \"removed_particles\": " << removed_global << ",\n";
+  s << "  \"steps\": " << sim.step << ",\n";
+  s << "  \"final_time\": " << sim.time << ",\n";
+  s << "  \"kinetic_energy\": " << r.kinetic << ",\n";
+  s << "  \"internal_energy\": " << r.internal << ",\n";
+  s << "  \"external_work\": " << r.external_work << ",\n";
+  s << "  \"initial_energy\": " << sim.diag.initial_energy << ",\n";
+  s << "  \"energy_balance_error\": " << r.balance_error << ",\n";
+  s << "  \"momentum\": [" << r.momentum[0] << ", " << r.momentum[1] << ", " << r.momentum[2] << "],\n";
+  s << "  \"mass\": " << r.mass << ",\n";
+  if (sim.analytic) {
+    s << "  \"analytic\": \"" << sim.analytic->Name() << "\",\n";
+    s << "  \"displacement_error_rms\": " << rms << ",\n";
+    s << "  \"displacement_error_max\": " << max << ",\n";
+    s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.diag.max_error_displacement, rms) << ",\n";
+  }
+  s << "  \"bytes_per_particle\": " << bytes << ",\n";
+  s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
+  s << "  \"particle_steps_per_second\": " << rate << ",\n";
+  s << "  \"particle_steps_per_second_per_core\": " << rate / sim.size << "\n";
+  s << "}\n";
+  const std::string path = sim.output_dir + "/summary.json", tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << s.str();
+    PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
+  }
+  PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)r.balance_error, (double)(rate / sim.size), path.c_str()));
+  if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

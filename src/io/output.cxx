@@ -1,0 +1,217 @@
+// Particle and grid output as HDF5 + XDMF that ParaView opens as is (petsc.md 4.5-4.6, 8).
+//
+// Each output step writes particles_NNNNNN.h5 (datasets /particles/<field>, [N][bs]) and, with
+// -output_grid, grid_NNNNNN.h5 (DMDA vectors in natural ordering, [Nz][Ny][Nx][dof]). The files are
+// written under a temporary name and renamed when complete; particles.xmf and grid.xmf list every
+// step written so far as a temporal collection and are replaced atomically too.
+#include "../simulation.hpp"
+#include <petscviewerhdf5.h>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <sys/stat.h>
+
+namespace burst {
+
+namespace {
+struct OutputRecord {
+  PetscInt   step;
+  PetscReal  time;
+  PetscInt64 particles;
+};
+std::vector<OutputRecord> records; // rank 0 only
+
+// One particle field to write: swarm field name, components written, and how to read them.
+struct ParticleOutputField {
+  const char *swarm_name; // field in the swarm
+  const char *out_name;   // dataset name
+  PetscInt    bs;         // components in the swarm
+  PetscInt    out_bs;     // components written (vectors padded to 3 for ParaView)
+  bool        is_int;
+  bool        displacement; // x - X0
+};
+} // namespace
+
+PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::string &final_name)
+{
+  PetscMPIInt rank;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscCallMPI(MPI_Comm_rank(comm, &rank));
+  if (!rank) PetscCheck(std::rename(tmp.c_str(), final_name.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s", tmp.c_str(), final_name.c_str());
+  PetscCallMPI(MPI_Barrier(comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode OutputSetUp(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  if (!sim.rank) {
+    struct stat st;
+    if (stat(sim.output_dir.c_str(), &st) != 0) {
+      std::string cmd = "mkdir -p '" + sim.output_dir + "'";
+      PetscCheck(std::system(cmd.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not create -output_dir %s", sim.output_dir.c_str());
+    }
+  }
+  PetscCallMPI(MPI_Barrier(sim.comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, const ParticleOutputField &f, PetscInt n)
+{
+  Vec          vec;
+  PetscScalar *out;
+  void        *data, *x = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(VecCreateMPI(sim.comm, n * f.out_bs, PETSC_DETERMINE, &vec));
+  PetscCall(VecSetBlockSize(vec, f.out_bs));
+  PetscCall(PetscObjectSetName((PetscObject)vec, f.out_name));
+  PetscCall(VecGetArray(vec, &out));
+  PetscCall(DMSwarmGetField(sim.swarm, f.swarm_name, nullptr, nullptr, &data));
+  if (f.displacement) PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
+  for (PetscInt p = 0; p < n; ++p)
+    for (PetscInt c = 0; c < f.out_bs; ++c) {
+      PetscReal value = 0;
+      if (c < f.bs) {
+        if (f.is_int) value = (PetscReal)((PetscInt *)data)[p * f.bs + c];
+        else value = ((PetscReal *)data)[p * f.bs + c];
+        if (f.displacement) value = ((PetscReal *)x)[p * f.bs + c] - value;
+      }
+      out[p * f.out_bs + c] = value;
+    }
+  if (f.displacement) PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
+  PetscCall(DMSwarmRestoreField(sim.swarm, f.swarm_name, nullptr, nullptr, &data));
+  PetscCall(VecRestoreArray(vec, &out));
+  PetscCall(VecView(vec, viewer));
+  PetscCall(VecDestroy(&vec));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static std::vector<ParticleOutputField> ParticleFields(PetscInt dim)
+{
+  return {
+    {DMSwarmPICField_coor, "coordinates", dim, dim, false, false},
+    {field::velocity, "velocity", dim, 3, false, false},
+    {field::position0, "displacement", dim, 3, false, true},
+    {field::mass, "mass", 1, 1, false, false},
+    {field::volume, "volume", 1, 1, false, false},
+    {field::stress, "stress", 9, 9, false, false},
+    {field::F, "deformation_gradient", 9, 9, false, false},
+    {field::temperature, "temperature", 1, 1, false, false},
+    {field::internal_energy, "internal_energy", 1, 1, false, false},
+    {field::material, "material", 1, 1, true, false},
+  };
+}
+
+static std::string XdmfParticleGrid(const std::string &file, PetscInt dim, PetscInt64 n, PetscReal time)
+{
+  std::ostringstream s;
+  s << "    <Grid Name=\"particles\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
+  s << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n";
+  s << "      <Geometry GeometryType=\"" << (dim == 2 ? "XY" : "XYZ") << "\">\n        <DataItem Dimensions=\"" << n << " " << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/particles/coordinates</DataItem>\n      </Geometry>\n";
+  for (const auto &f : ParticleFields(dim)) {
+    if (f.swarm_name == DMSwarmPICField_coor) continue;
+    const char *type = f.out_bs == 1 ? "Scalar" : (f.out_bs == 3 ? "Vector" : "Tensor");
+    s << "      <Attribute Name=\"" << f.out_name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n        <DataItem Dimensions=\"" << n;
+    if (f.out_bs > 1) s << " " << f.out_bs;
+    s << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/particles/" << f.out_name << "</DataItem>\n      </Attribute>\n";
+  }
+  s << "    </Grid>\n";
+  return s.str();
+}
+
+static std::string XdmfGridGrid(const Simulation &sim, const std::string &file, PetscReal time)
+{
+  const Grid        &g = sim.grid;
+  const PetscInt     dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
+  std::ostringstream dims, origin, spacing, s;
+  for (PetscInt d = dim - 1; d >= 0; --d) {
+    dims << g.cells[d] + 1 << (d ? " " : "");
+    origin << g.lower[d] << (d ? " " : "");
+    spacing << g.h[d] << (d ? " " : "");
+  }
+  s << "    <Grid Name=\"grid\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
+  s << "      <Topology TopologyType=\"" << (dim == 2 ? "2DCoRectMesh" : "3DCoRectMesh") << "\" Dimensions=\"" << dims.str() << "\"/>\n";
+  s << "      <Geometry GeometryType=\"" << (dim == 2 ? "ORIGIN_DXDY" : "ORIGIN_DXDYDZ") << "\">\n";
+  s << "        <DataItem Dimensions=\"" << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << origin.str() << "</DataItem>\n";
+  s << "        <DataItem Dimensions=\"" << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << spacing.str() << "</DataItem>\n      </Geometry>\n";
+  auto component = [&](const char *name, const char *dataset, PetscInt ndof, PetscInt c) {
+    std::ostringstream start, stride, count;
+    for (PetscInt d = 0; d < dim; ++d) {
+      start << "0 ";
+      stride << "1 ";
+    }
+    start << c;
+    stride << 1;
+    count << dims.str() << " 1";
+    s << "      <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
+    s << "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << count.str() << "\" Type=\"HyperSlab\">\n";
+    s << "          <DataItem Dimensions=\"3 " << dim + 1 << "\" Format=\"XML\">" << start.str() << " " << stride.str() << " " << count.str() << "</DataItem>\n";
+    s << "          <DataItem Dimensions=\"" << dims.str() << " " << ndof << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << dataset << "</DataItem>\n";
+    s << "        </DataItem>\n      </Attribute>\n";
+  };
+  const char *axis[3] = {"x", "y", "z"};
+  component("mass", "nodal", dof, 0);
+  for (PetscInt d = 0; d < dim; ++d) component((std::string("velocity_") + axis[d]).c_str(), "grid_velocity", vdof, dim + d);
+  for (PetscInt d = 0; d < dim; ++d) component((std::string("force_") + axis[d]).c_str(), "nodal", dof, 1 + dim + d);
+  s << "    </Grid>\n";
+  return s.str();
+}
+
+static PetscErrorCode WriteCollection(Simulation &sim, const char name[], bool grid)
+{
+  PetscFunctionBeginUser;
+  if (sim.rank) PetscFunctionReturn(PETSC_SUCCESS);
+  const std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+    for (const auto &r : records) {
+      char file[64];
+      std::snprintf(file, sizeof(file), "%s_%06d.h5", grid ? "grid" : "particles", (int)r.step);
+      out << (grid ? XdmfGridGrid(sim, file, r.time) : XdmfParticleGrid(file, sim.grid.dim, r.particles, r.time));
+    }
+    out << "  </Grid>\n </Domain>\n</Xdmf>\n";
+    PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
+  }
+  PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode WriteOutput(Simulation &sim)
+{
+  PetscViewer viewer;
+  PetscInt    n;
+  char        name[64];
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_output, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  std::snprintf(name, sizeof(name), "particles_%06d.h5", (int)sim.step);
+  std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
+  PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
+  for (const auto &f : ParticleFields(sim.grid.dim)) PetscCall(WriteParticleField(sim, viewer, f, n));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/particles", "time", PETSC_REAL, &sim.time));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/particles", "step", PETSC_INT, &sim.step));
+  PetscCall(PetscViewerDestroy(&viewer));
+  PetscCall(AtomicRename(sim.comm, tmp, path));
+
+  if (sim.write_grid) {
+    std::snprintf(name, sizeof(name), "grid_%06d.h5", (int)sim.step);
+    path = sim.output_dir + "/" + name;
+    tmp  = path + ".tmp";
+    PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
+    PetscCall(VecView(sim.grid.nodal, viewer));
+    PetscCall(VecView(sim.grid.velocity, viewer));
+    PetscCall(PetscViewerDestroy(&viewer));
+    PetscCall(AtomicRename(sim.comm, tmp, path));
+  }
+  if (!sim.rank) records.push_back({sim.step, sim.time, sim.total_particles});
+  PetscCall(WriteCollection(sim, "particles.xmf", false));
+  if (sim.write_grid) PetscCall(WriteCollection(sim, "grid.xmf", true));
+  PetscCall(PetscLogEventEnd(sim.ev_output, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

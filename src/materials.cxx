@@ -1,0 +1,44 @@
+// Materials of a run: -materials name1,name2 and one prefixed block of options per name.
+#include "simulation.hpp"
+#include "util.hpp"
+#include "geometry.hpp"
+#include "analytic.hpp"
+
+namespace burst {
+
+PetscErrorCode CreateMaterials(Simulation &sim)
+{
+  char     *names[32];
+  PetscInt  n = 32;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscCall(MaterialRegisterAll());
+  PetscOptionsBegin(sim.comm, "", "Materials", "Materials");
+  PetscCall(PetscOptionsStringArray("-materials", "Names of the materials; each is configured with -<name>_model and its parameters", "", names, &n, &set));
+  PetscOptionsEnd();
+  PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,name2,... and -<name>_model for each");
+  PetscReal densest = 0;
+  for (PetscInt i = 0; i < n; ++i) {
+    Material *m;
+    for (PetscInt j = 0; j < i; ++j) PetscCheck(std::string(names[i]) != names[j], sim.comm, PETSC_ERR_USER_INPUT, "Option -materials lists '%s' twice", names[i]);
+    PetscCall(MaterialCreate(sim.comm, names[i], &m));
+    sim.materials.emplace_back(m);
+    densest = PetscMax(densest, m->Density());
+    PetscCall(PetscFree(names[i]));
+  }
+  sim.mass_cutoff = sim.mass_cutoff_fraction * densest * sim.grid.CellVolume();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+Simulation::~Simulation()
+{
+  VecDestroy(&grid.nodal);
+  VecDestroy(&grid.nodal_local);
+  VecDestroy(&grid.velocity);
+  VecDestroy(&grid.velocity_local);
+  DMDestroy(&grid.da_velocity);
+  DMDestroy(&grid.da_nodes);
+  DMDestroy(&swarm);
+}
+
+} // namespace burst

@@ -1,0 +1,88 @@
+// Grid to particles from the ghosted [v_old, v_new] nodal velocities:
+//   velocity           v_p <- a (v_p + sum N (v_new - v_old)) + (1 - a) sum N v_new   (a = FLIP fraction)
+//   position           x_p <- x_p + dt sum N v_new
+//   velocity_gradient  L_p = sum v_new (x) grad N
+// The work of the external forces, f_ext . (v_p^n + v_p^{n+1})/2 dt, is accumulated here.
+#include "grid_index.hpp"
+
+namespace burst {
+
+namespace {
+struct G2PKernel {
+  Simulation        &sim;
+  G2PRequest         what;
+  const PetscScalar *vel;
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
+    const LocalNodeIndex index(g);
+    const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
+    PetscInt             n;
+    PetscReal           *x, *v, *L;
+    const PetscReal     *hw, *F, *fext;
+    PetscReal            work = 0;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+    PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
+    PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+    PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+    PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    Stencil<DIM, S> st;
+    for (PetscInt p = 0; p < n; ++p) {
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      PetscReal dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {};
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+        const PetscScalar *nv = vel + index(i, j, k) * vdof;
+        for (int a = 0; a < DIM; ++a) {
+          dv[a] += N * (nv[DIM + a] - nv[a]);
+          vnew[a] += N * nv[DIM + a];
+          for (int b = 0; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
+        }
+      });
+      if (what.velocity) {
+        PetscReal *vp = v + DIM * p;
+        for (int a = 0; a < DIM; ++a) {
+          const PetscReal v_new = flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a];
+          work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
+          vp[a] = v_new;
+        }
+      }
+      if (what.position)
+        for (int a = 0; a < DIM; ++a) x[DIM * p + a] += dt * vnew[a];
+      if (what.velocity_gradient) {
+        PetscReal *Lp = L + 9 * p;
+        for (int a = 0; a < 9; ++a) Lp[a] = 0;
+        for (int a = 0; a < DIM; ++a)
+          for (int b = 0; b < DIM; ++b) Lp[3 * a + b] = grad[a][b];
+      }
+    }
+    sim.diag.external_work += work;
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+    PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+} // namespace
+
+PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what)
+{
+  const PetscScalar *vel;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_g2p, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
+  G2PKernel kernel{sim, what, vel};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(PetscLogEventEnd(sim.ev_g2p, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

@@ -1,0 +1,93 @@
+// Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
+// into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
+#include "grid_index.hpp"
+
+namespace burst {
+
+namespace {
+struct P2GKernel {
+  Simulation &sim;
+  P2GRequest  what;
+  PetscScalar *nodal;
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
+    const LocalNodeIndex index(g);
+    PetscInt             n;
+    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+    PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+    PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+    PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+    PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+    PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
+    PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    Stencil<DIM, S> st;
+    const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
+    for (PetscInt p = 0; p < n; ++p) {
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      const PetscReal  mp = m[p], Vp = vol[p];
+      const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p;
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+        PetscScalar *node = nodal + index(i, j, k) * dof; // velocity field 0
+        if (do_mass) node[0] += N * mp;
+        if (do_mom)
+          for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
+        if (do_force)
+          for (int a = 0; a < DIM; ++a) {
+            PetscReal div = 0;
+            for (int b = 0; b < DIM; ++b) div += s[3 * a + b] * dN[b];
+            node[1 + DIM + a] += -Vp * div + N * fe[a];
+          }
+      });
+    }
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+    PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+} // namespace
+
+PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
+{
+  Grid        &g = sim.grid;
+  PetscScalar *nodal;
+  PetscInt     nlocal;
+  const PetscInt dof = g.num_velocity_fields * g.NodeStride(), dim = g.dim;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_p2g, 0, 0, 0, 0));
+  PetscCall(VecZeroEntries(g.nodal_local));
+  PetscCall(VecGetArray(g.nodal_local, &nodal));
+  P2GKernel kernel{sim, what, nodal};
+  PetscCall(DispatchShape(dim, sim.shape, kernel));
+  PetscCall(VecRestoreArray(g.nodal_local, &nodal));
+  // Zero only the requested dofs of the global vector; the others keep their values and receive
+  // zeros from the local vector.
+  PetscCall(VecGetLocalSize(g.nodal, &nlocal));
+  PetscCall(VecGetArray(g.nodal, &nodal));
+  for (PetscInt node = 0; node < nlocal / dof; ++node) {
+    PetscScalar *nd = nodal + node * dof;
+    if (what.mass) nd[0] = 0;
+    for (PetscInt a = 0; a < dim; ++a) {
+      if (what.momentum) nd[1 + a] = 0;
+      if (what.force) nd[1 + dim + a] = 0;
+    }
+  }
+  PetscCall(VecRestoreArray(g.nodal, &nodal));
+  PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
+  PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

@@ -1,0 +1,79 @@
+// Time step and external forces.
+#include "../simulation.hpp"
+#include "../analytic.hpp"
+#include "../../models/elastic/tensor.hpp"
+#include <cmath>
+
+namespace burst {
+
+// dt = cfl min_p min_d h_d / (c_p + |v_p,d|), reduced over ranks; capped by -mpm_dt_max and so that
+// the last step ends at -mpm_final_time. -mpm_dt fixes it instead.
+PetscErrorCode ComputeTimeStep(Simulation &sim)
+{
+  PetscInt         n, dim = sim.grid.dim;
+  const PetscReal *v, *c;
+  PetscReal        local = PETSC_MAX_REAL, global;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_dt, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
+  for (PetscInt p = 0; p < n; ++p)
+    for (PetscInt d = 0; d < dim; ++d) local = PetscMin(local, sim.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, sim.comm));
+  sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
+  PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
+  const PetscReal remaining = sim.final_time - sim.time;
+  if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining; // end exactly at the final time
+  PetscCall(PetscLogEventEnd(sim.ev_dt, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// External force per particle at t_n: gravity, the body force of an analytic solution, and the
+// pressure of a load curve on surface particles, with the area vector carried by Nanson's formula
+// n da = J F^{-T} N dA.
+PetscErrorCode ComputeExternalForces(Simulation &sim)
+{
+  PetscInt         n, dim = sim.grid.dim;
+  PetscReal       *fext;
+  const PetscReal *m, *area0, *F, *X0;
+  const PetscInt  *curve;
+  std::vector<PetscReal> pressure(sim.load_curves.size());
+  PetscFunctionBeginUser;
+  for (size_t c = 0; c < sim.load_curves.size(); ++c) pressure[c] = sim.load_curves[c].Evaluate(sim.time);
+  const bool body = sim.analytic && sim.analytic->HasBodyForce();
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+  PetscCall(DMSwarmGetField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal b[3] = {0, 0, 0};
+    if (body) {
+      PetscReal X[3] = {0, 0, 0};
+      for (PetscInt d = 0; d < dim; ++d) X[d] = X0[dim * p + d];
+      sim.analytic->BodyForce(X, sim.time, b);
+    }
+    for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] = m[p] * (sim.gravity[d] + b[d]);
+    if (curve[p] >= 0) {
+      Mat3CMap                 Fp(F + 9 * p);
+      Eigen::Matrix<PetscReal, 3, 1> N0 = Eigen::Matrix<PetscReal, 3, 1>::Zero();
+      for (PetscInt d = 0; d < dim; ++d) N0[d] = area0[dim * p + d];
+      const Eigen::Matrix<PetscReal, 3, 1> nda = Fp.determinant() * Fp.inverse().transpose() * N0;
+      for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] -= pressure[curve[p]] * nda[d]; // pressure pushes against the outward normal
+    }
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

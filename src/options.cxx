@@ -1,0 +1,67 @@
+// Run-control options: scene name, output, time stepping, MPM scheme, body force.
+#include "simulation.hpp"
+#include "util.hpp"
+
+namespace burst {
+
+const char *const StepSchemeNames[]    = {"usl", "usf", "musl"};
+const char *const FUpdateNames[]       = {"linear", "exponential"};
+const char *const FaceBCNames[]        = {"free", "fixed", "symmetry"};
+const char *const OutsidePolicyNames[] = {"error", "remove"};
+const char *const ShapeTypeNames[]     = {"linear", "ugimp", "cpgimp", "bspline2"};
+
+PetscErrorCode ReadRunOptions(Simulation &sim)
+{
+  char      buf[PETSC_MAX_PATH_LEN];
+  PetscBool set;
+  int       choice;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "burst run control", "Run");
+  PetscCall(PetscStrncpy(buf, sim.scene.c_str(), sizeof(buf)));
+  PetscCall(PetscOptionsString("-scene", "Name of the scene, reported in the summary", "", buf, buf, sizeof(buf), &set));
+  sim.scene = buf;
+  PetscCall(PetscStrncpy(buf, sim.output_dir.c_str(), sizeof(buf)));
+  PetscCall(PetscOptionsString("-output_dir", "Folder for HDF5/XDMF output, monitor.csv and summary.json", "", buf, buf, sizeof(buf), &set));
+  sim.output_dir = buf;
+
+  PetscCall(PetscOptionsReal("-mpm_final_time", "Final time (s), > 0", "", sim.final_time, &sim.final_time, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_final_time", sim.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-mpm_max_steps", "Stop after this many steps (default: no limit)", "", sim.max_steps, &sim.max_steps, nullptr));
+  PetscCheck(sim.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.max_steps);
+  PetscCall(PetscOptionsReal("-mpm_cfl", "Courant number: dt = cfl min_p min_d h_d/(c_p + |v_p,d|), in (0, 1]", "", sim.cfl, &sim.cfl, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_cfl", sim.cfl, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-mpm_dt_max", "Largest time step (s), > 0 (default: none)", "", sim.dt_max, &sim.dt_max, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_dt_max", sim.dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-mpm_dt", "Fixed time step (s) instead of the CFL rule; 0 = use the CFL rule", "", sim.dt_fixed, &sim.dt_fixed, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_dt", sim.dt_fixed, 0, PETSC_MAX_REAL, PETSC_FALSE));
+
+  choice = (int)sim.scheme;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_scheme", "Order of stress update and grid update in a step", StepSchemeNames, 3, &choice, nullptr));
+  sim.scheme = (StepScheme)choice;
+  PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.flip_fraction, &sim.flip_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.flip_fraction, 0, 1, PETSC_FALSE));
+  choice = (int)sim.f_update;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
+  sim.f_update = (FUpdate)choice;
+  choice = (int)sim.shape;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_shape_type", "Interpolator (shape functions)", ShapeTypeNames, 4, &choice, nullptr));
+  sim.shape = (ShapeType)choice;
+  choice = (int)sim.outside;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_outside_domain", "A particle leaving the domain: stop with an error, or remove it and count it", OutsidePolicyNames, 2, &choice, nullptr));
+  sim.outside = (OutsidePolicy)choice;
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-gravity", "Body acceleration gx,gy[,gz] (m/s^2), one value per dimension", sim.gravity, 3, &set));
+  PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
+
+  PetscCall(PetscOptionsInt("-output_interval", "Steps between HDF5/XDMF outputs; 0 = first and last step only", "", sim.output_interval, &sim.output_interval, nullptr));
+  PetscCheck(sim.output_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -output_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.output_interval);
+  PetscCall(PetscOptionsInt("-monitor_interval", "Steps between monitor lines (energy, momentum) on screen and in monitor.csv; > 0", "", sim.monitor_interval, &sim.monitor_interval, nullptr));
+  PetscCheck(sim.monitor_interval > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_interval = %" PetscInt_FMT " is out of range: it must be > 0", sim.monitor_interval);
+  PetscCall(PetscOptionsBool("-output_grid", "Write grid fields (mass, velocity) with the particles", "", sim.write_grid, &sim.write_grid, nullptr));
+  PetscCall(PetscOptionsBool("-progress", "Print a progress line for long runs", "", sim.progress, &sim.progress, nullptr));
+  PetscCall(PetscOptionsInt("-monitor_track_pid", "Particle id whose position and displacement go into monitor.csv; -1 = none", "", sim.track_pid, &sim.track_pid, nullptr));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

@@ -1,0 +1,306 @@
+// Seeding: geometry objects from options and the particles they fill.
+//
+// Each geometry fills the cells owned by this rank with particles_per_cell^dim particles per cell at
+// the centres of equal sub-cells. A particle takes the volume of its sub-cell and mass = density x
+// volume. Geometries are filled in the order listed; a point already claimed is not seeded twice.
+#include "geometry.hpp"
+#include "util.hpp"
+#include "analytic.hpp"
+#include <cmath>
+
+namespace burst {
+
+const char *const GeometryTypeNames[]    = {"box", "disk", "cylinder", "annulus", "sphere"};
+const char *const PressureSurfaceNames[] = {"none", "inner", "outer"};
+
+PetscReal LoadCurve::Evaluate(PetscReal t) const
+{
+  if (time.empty()) return 0;
+  if (t <= time.front()) return value.front();
+  if (t >= time.back()) return value.back();
+  size_t k = 1;
+  while (time[k] < t) ++k;
+  const PetscReal s = (t - time[k - 1]) / (time[k] - time[k - 1]);
+  return value[k - 1] + s * (value[k] - value[k - 1]);
+}
+
+void Geometry::RadialDirection(const PetscReal x[], PetscReal r_hat[], PetscReal *r) const
+{
+  const PetscInt nd = (type == GeometryType::Sphere) ? dim : 2;
+  PetscReal      r2 = 0;
+  for (PetscInt d = 0; d < 3; ++d) r_hat[d] = 0;
+  for (PetscInt d = 0; d < nd; ++d) {
+    r_hat[d] = x[d] - center[d];
+    r2 += r_hat[d] * r_hat[d];
+  }
+  *r = std::sqrt(r2);
+  if (*r > 0)
+    for (PetscInt d = 0; d < nd; ++d) r_hat[d] /= *r;
+}
+
+bool Geometry::Contains(const PetscReal x[]) const
+{
+  PetscReal r_hat[3], r;
+  switch (type) {
+  case GeometryType::Box:
+    for (PetscInt d = 0; d < dim; ++d)
+      if (x[d] < lower[d] || x[d] > upper[d]) return false;
+    return true;
+  case GeometryType::Sphere:
+    RadialDirection(x, r_hat, &r);
+    return r <= radius;
+  default: break;
+  }
+  // disk / cylinder / annulus: in-plane radius, sector, and z-extent in 3-D
+  RadialDirection(x, r_hat, &r);
+  if (r > radius) return false;
+  if (type == GeometryType::Annulus && r < inner_radius) return false;
+  if (dim == 3 && (x[2] < lower[2] || x[2] > upper[2])) return false;
+  if (angle_range[1] - angle_range[0] < 360) {
+    PetscReal angle = std::atan2(x[1] - center[1], x[0] - center[0]) * 180.0 / PETSC_PI;
+    while (angle < angle_range[0]) angle += 360;
+    while (angle >= angle_range[0] + 360) angle -= 360;
+    if (angle > angle_range[1]) return false;
+  }
+  return true;
+}
+
+PetscErrorCode ReadLoadCurves(Simulation &sim)
+{
+  char     *names[32];
+  PetscInt  n = 32;
+  PetscBool set;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Load curves", "Loads");
+  PetscCall(PetscOptionsStringArray("-load_curves", "Names of piecewise-linear load curves; each is given by -<name>_time t0,t1,... (s) and -<name>_value v0,v1,... (Pa)", "", names, &n, &set));
+  PetscOptionsEnd();
+  if (!set) n = 0;
+  for (PetscInt c = 0; c < n; ++c) {
+    LoadCurve curve;
+    PetscReal t[256], v[256];
+    PetscInt  nt = 256, nv = 256;
+    PetscBool st = PETSC_FALSE, sv = PETSC_FALSE;
+    curve.name = names[c];
+    PetscOptionsBegin(sim.comm, (curve.name + "_").c_str(), "Load curve", "Loads");
+    PetscCall(PetscOptionsRealArray("-time", "Times of the load curve points (s), increasing", "", t, &nt, &st));
+    PetscCall(PetscOptionsRealArray("-value", "Values at those times (Pa)", "", v, &nv, &sv));
+    PetscOptionsEnd();
+    PetscCheck(st && sv && nt == nv && nt >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': give -%s_time and -%s_value with the same number (>= 1) of entries", names[c], names[c], names[c]);
+    for (PetscInt k = 0; k < nt; ++k) {
+      PetscCheck(k == 0 || t[k] > t[k - 1], sim.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': -%s_time must be strictly increasing", names[c], names[c]);
+      curve.time.push_back(t[k]);
+      curve.value.push_back(v[k]);
+    }
+    sim.load_curves.push_back(curve);
+    PetscCall(PetscFree(names[c]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ReadGeometries(Simulation &sim)
+{
+  char     *names[64];
+  PetscInt  n = 64;
+  PetscBool set;
+  const PetscInt dim = sim.grid.dim;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Geometry objects", "Seeding");
+  PetscCall(PetscOptionsStringArray("-geometries", "Names of the geometry objects that seed particles; each is configured with -<name>_type etc.", "", names, &n, &set));
+  PetscOptionsEnd();
+  PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No particles: give -geometries name1,name2,... and configure each with -<name>_type (box, disk, cylinder, annulus, sphere)");
+  for (PetscInt gi = 0; gi < n; ++gi) {
+    auto  g     = std::make_unique<Geometry>();
+    int   type  = 0, surface = 0;
+    char  material[256] = "", curve[256] = "";
+    PetscBool has_type = PETSC_FALSE, has_material = PETSC_FALSE, has_curve = PETSC_FALSE;
+    g->name = names[gi];
+    g->dim  = dim;
+    const std::string pre = g->name + "_";
+    const char       *P   = pre.c_str();
+    PetscOptionsBegin(sim.comm, P, "Geometry object", "Seeding");
+    PetscCall(OptionsChoice(PetscOptionsObject, "-type", "Shape of the object", GeometryTypeNames, 5, &type, &has_type));
+    g->type = (GeometryType)type;
+    PetscCall(PetscOptionsString("-material", "Name of the material filling the object (one of -materials)", "", material, material, sizeof(material), &has_material));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-lower", "Box: lower corner (m); cylinder/annulus in 3-D: z of the lower end in the last entry", g->lower, dim, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-upper", "Box: upper corner (m); cylinder/annulus in 3-D: z of the upper end in the last entry", g->upper, dim, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-center", "Centre of disk, cylinder axis, annulus or sphere (m)", g->center, dim, nullptr));
+    PetscCall(PetscOptionsReal("-radius", "Outer radius (m)", "", g->radius, &g->radius, nullptr));
+    PetscCall(PetscOptionsReal("-inner_radius", "Annulus inner radius (m)", "", g->inner_radius, &g->inner_radius, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-angle_range", "Sector of a disk/annulus/cylinder: start,end angle in degrees (0,90 for a quarter)", g->angle_range, 2, nullptr));
+    PetscCall(PetscOptionsInt("-particles_per_cell", "Particles per cell in each direction, >= 1", "", g->particles_per_cell, &g->particles_per_cell, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s)", g->velocity, dim, nullptr));
+    PetscCall(PetscOptionsReal("-radial_velocity", "Initial radial velocity added to -velocity (m/s)", "", g->radial_velocity, &g->radial_velocity, nullptr));
+    PetscCall(PetscOptionsReal("-temperature", "Initial temperature (K), > 0", "", g->temperature, &g->temperature, nullptr));
+    PetscCall(OptionsChoice(PetscOptionsObject, "-pressure_surface", "Surface of a disk/annulus/cylinder/sphere loaded by the pressure of -<name>_pressure_curve", PressureSurfaceNames, 3, &surface, nullptr));
+    g->pressure_surface = (PressureSurface)surface;
+    PetscCall(PetscOptionsString("-pressure_curve", "Name of the load curve (of -load_curves) giving the pressure on that surface", "", curve, curve, sizeof(curve), &has_curve));
+    PetscOptionsEnd();
+
+    PetscCheck(has_type, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%stype (box, disk, cylinder, annulus, sphere)", P, P);
+    PetscCheck(has_material, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%smaterial (one of the names in -materials)", names[gi], P);
+    g->material = -1;
+    for (size_t m = 0; m < sim.materials.size(); ++m)
+      if (sim.materials[m]->name_ == material) g->material = (PetscInt)m;
+    PetscCheck(g->material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%smaterial %s is not one of -materials", names[gi], P, material);
+    PetscCheck(g->particles_per_cell >= 1 && g->particles_per_cell <= 16, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sparticles_per_cell = %" PetscInt_FMT " is out of range: it must be in [1, 16]", P, g->particles_per_cell);
+    PetscCall(CheckRange(sim.comm, Prefixed(P, "temperature").c_str(), g->temperature, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    if (g->type != GeometryType::Box) PetscCall(CheckRange(sim.comm, Prefixed(P, "radius").c_str(), g->radius, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    if (g->type == GeometryType::Annulus) {
+      PetscCheck(g->inner_radius >= 0 && g->inner_radius < g->radius, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sinner_radius = %g is out of range: it must be in [0, radius = %g)", P, (double)g->inner_radius, (double)g->radius);
+    }
+    if (g->type == GeometryType::Box || ((g->type == GeometryType::Cylinder || g->type == GeometryType::Annulus) && dim == 3)) {
+      const PetscInt d0 = g->type == GeometryType::Box ? 0 : 2;
+      for (PetscInt d = d0; d < dim; ++d) PetscCheck(g->upper[d] > g->lower[d], sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%supper must exceed -%slower in direction %" PetscInt_FMT, names[gi], P, P, d);
+    }
+    PetscCheck(g->type != GeometryType::Disk || dim == 2, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%stype disk is 2-D; in 3-D use cylinder or sphere", names[gi], P);
+    PetscCheck(g->angle_range[1] > g->angle_range[0] && g->angle_range[1] - g->angle_range[0] <= 360, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sangle_range: need start < end <= start + 360 (degrees)", P);
+    if (g->pressure_surface != PressureSurface::None) {
+      PetscCheck(g->type != GeometryType::Box, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs a disk, cylinder, annulus or sphere", names[gi], P);
+      PetscCheck(has_curve, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs -%spressure_curve NAME", names[gi], P, P);
+      for (size_t c = 0; c < sim.load_curves.size(); ++c)
+        if (sim.load_curves[c].name == curve) g->load_curve = (PetscInt)c;
+      PetscCheck(g->load_curve >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_curve %s is not one of -load_curves", names[gi], P, curve);
+    }
+    sim.geometries.push_back(std::move(g));
+    PetscCall(PetscFree(names[gi]));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+struct SeedPoint {
+  PetscReal x[3];
+  PetscInt  geometry;
+};
+
+PetscErrorCode SeedParticles(Simulation &sim)
+{
+  const Grid &g   = sim.grid;
+  const PetscInt dim = g.dim;
+  PetscInt    xs[3], xm[3];
+  std::vector<SeedPoint> points;
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscInt ce[3]; // owned cells: lower node owned and cell index < cells
+  for (int d = 0; d < 3; ++d) ce[d] = d < dim ? PetscMin(xs[d] + xm[d], g.cells[d]) : 1;
+  if (dim == 2) { xs[2] = 0; }
+  for (PetscInt k = xs[2]; k < ce[2]; ++k)
+    for (PetscInt j = xs[1]; j < ce[1]; ++j)
+      for (PetscInt i = xs[0]; i < ce[0]; ++i) {
+        const PetscInt cell[3] = {i, j, k};
+        for (PetscInt gi = 0; gi < (PetscInt)sim.geometries.size(); ++gi) {
+          const Geometry &geo = *sim.geometries[gi];
+          const PetscInt  ppc = geo.particles_per_cell;
+          const PetscInt  nsub = dim == 2 ? ppc * ppc : ppc * ppc * ppc;
+          for (PetscInt s = 0; s < nsub; ++s) {
+            const PetscInt sub[3] = {s % ppc, (s / ppc) % ppc, s / (ppc * ppc)};
+            SeedPoint      pt;
+            pt.x[2] = 0;
+            for (PetscInt d = 0; d < dim; ++d) pt.x[d] = g.lower[d] + (cell[d] + (sub[d] + 0.5) / ppc) * g.h[d];
+            if (!geo.Contains(pt.x)) continue;
+            bool claimed = false;
+            for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = sim.geometries[gj]->Contains(pt.x);
+            if (claimed) continue;
+            pt.geometry = gi;
+            points.push_back(pt);
+          }
+        }
+      }
+
+  const PetscInt n = (PetscInt)points.size();
+  PetscInt64     local = n, offset = 0;
+  PetscCallMPI(MPI_Exscan(&local, &offset, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  if (sim.rank == 0) offset = 0;
+  PetscCallMPI(MPI_Allreduce(&local, &sim.total_particles, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  sim.next_pid = sim.total_particles;
+  PetscCheck(sim.total_particles > 0, sim.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
+  PetscCall(DMSwarmSetLocalSizes(sim.swarm, n, 16));
+
+  PetscReal *x, *v, *mass, *vol, *vol0, *X0, *hw, *F, *sigma, *L, *T, *c, *e, *fext, *area;
+  PetscInt  *mat, *curve, *cell;
+  PetscInt64 *pid;
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+  PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
+  PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
+  PetscCall(DMSwarmGetField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&T));
+  PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
+  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
+  PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+  PetscCall(DMSwarmGetField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area));
+  PetscCall(DMSwarmGetField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
+  PetscCall(DMSwarmGetField(sim.swarm, field::material, nullptr, nullptr, (void **)&mat));
+  for (PetscInt p = 0; p < n; ++p) {
+    const Geometry &geo = *sim.geometries[points[p].geometry];
+    const PetscInt  ppc = geo.particles_per_cell;
+    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc);
+    PetscReal       r_hat[3], r;
+    geo.RadialDirection(points[p].x, r_hat, &r);
+    pid[p]   = offset + p;
+    cell[p]  = -1;
+    mat[p]   = geo.material;
+    mass[p]  = sim.materials[geo.material]->Density() * sub_volume;
+    vol[p]   = sub_volume;
+    vol0[p]  = sub_volume;
+    T[p]     = geo.temperature;
+    c[p]     = 0;
+    e[p]     = 0;
+    curve[p] = -1;
+    for (PetscInt d = 0; d < dim; ++d) {
+      x[p * dim + d]    = points[p].x[d];
+      X0[p * dim + d]   = points[p].x[d];
+      hw[p * dim + d]   = 0.5 * g.h[d] / ppc;
+      v[p * dim + d]    = geo.velocity[d] + geo.radial_velocity * r_hat[d];
+      fext[p * dim + d] = 0;
+      area[p * dim + d] = 0;
+    }
+    for (int a = 0; a < 9; ++a) {
+      F[9 * p + a]     = (a % 4 == 0) ? 1.0 : 0.0;
+      sigma[9 * p + a] = 0;
+      L[9 * p + a]     = 0;
+    }
+    // Pressure-loaded surface: particles in a band one sub-cell deep carry area = volume / depth,
+    // so the band's areas add up to the surface area.
+    if (geo.pressure_surface != PressureSurface::None) {
+      PetscReal depth = g.h[0] / ppc;
+      for (PetscInt d = 1; d < dim; ++d) depth = PetscMin(depth, g.h[d] / ppc);
+      const bool inner = geo.pressure_surface == PressureSurface::Inner;
+      const PetscReal dist = inner ? r - (geo.type == GeometryType::Annulus ? geo.inner_radius : 0) : geo.radius - r;
+      if (dist >= 0 && dist < depth && !(inner && geo.type != GeometryType::Annulus)) {
+        curve[p] = geo.load_curve;
+        for (PetscInt d = 0; d < dim; ++d) area[p * dim + d] = (inner ? -1.0 : 1.0) * r_hat[d] * sub_volume / depth;
+      }
+    }
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::material, nullptr, nullptr, (void **)&mat));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&T));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  for (auto &m : sim.materials) PetscCall(m->InitializeState(sim.swarm, 0, n));
+  PetscCall(PetscInfo(sim.swarm, "Seeded %" PetscInt_FMT " particles on this rank, %" PetscInt64_FMT " in all\n", n, sim.total_particles));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

@@ -1,0 +1,189 @@
+// The state of one burst run: options, grid, particles, materials and diagnostics.
+// Each phase of the time step (src/step.cxx) is a function of this struct.
+#pragma once
+#include "petsc_compat.hpp"
+#include "mpm/shape.hpp"
+#include "../models/material.hpp"
+#include <petscdmda.h>
+#include <petscdmswarm.h>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace burst {
+
+enum class StepScheme : int { USL = 0, USF = 1, MUSL = 2 };
+enum class FUpdate : int { Linear = 0, Exponential = 1 };
+enum class FaceBC : int { Free = 0, Fixed = 1, Symmetry = 2 };
+enum class OutsidePolicy : int { Error = 0, Remove = 1 };
+
+extern const char *const StepSchemeNames[];
+extern const char *const FUpdateNames[];
+extern const char *const FaceBCNames[];
+extern const char *const OutsidePolicyNames[];
+extern const char *const ShapeTypeNames[];
+
+// Names of the swarm fields registered by the core.
+namespace field {
+inline constexpr const char *velocity        = "velocity";          // m/s, bs dim
+inline constexpr const char *mass            = "mass";              // kg
+inline constexpr const char *volume          = "volume";            // m^3 (2-D: per metre of thickness)
+inline constexpr const char *volume0         = "volume0";           // m^3, at seeding
+inline constexpr const char *position0       = "position0";         // m, bs dim (reference position X)
+inline constexpr const char *half_width0     = "half_width0";       // m, bs dim (GIMP particle half-widths)
+inline constexpr const char *F               = "F";                 // deformation gradient, bs 9
+inline constexpr const char *stress          = "stress";            // Cauchy stress, Pa, bs 9
+inline constexpr const char *L               = "velocity_gradient"; // 1/s, bs 9
+inline constexpr const char *temperature     = "temperature";       // K
+inline constexpr const char *wave_speed      = "wave_speed";        // m/s
+inline constexpr const char *internal_energy = "internal_energy";   // J (stress work)
+inline constexpr const char *external_force  = "external_force";    // N, bs dim (body + traction)
+inline constexpr const char *traction_area0  = "traction_area0";    // m^2, bs dim: outward normal x area at seeding
+inline constexpr const char *load_curve      = "load_curve";        // int: index of the pressure load curve, -1 none
+inline constexpr const char *material        = "material";          // int: material id
+} // namespace field
+
+// A piecewise-linear function of time (pressure histories), Pa.
+struct LoadCurve {
+  std::string            name;
+  std::vector<PetscReal> time, value;
+  PetscReal              Evaluate(PetscReal t) const;
+};
+
+// The analytic solutions used for verification (bar mode, manufactured solutions).
+class AnalyticSolution;
+
+// A geometry object from which particles are seeded (src/seed.cxx).
+struct Geometry;
+
+struct Grid {
+  PetscInt  dim = 2;
+  PetscReal lower[3] = {0, 0, 0}, upper[3] = {1, 1, 1};
+  PetscInt  cells[3] = {10, 10, 10};
+  PetscReal h[3]     = {0.1, 0.1, 0.1};
+  Axis      axes[3];
+  FaceBC    bc[3][2] = {{FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}};
+  DM        da_nodes = nullptr;  // node DMDA, dof = nodal layout below
+  DM        da_velocity = nullptr; // node DMDA for the velocity fields [v_old, v_new] per velocity field
+  // Nodal layout per velocity field: [mass, momentum(dim), force(dim)]. Several velocity fields
+  // (materials in contact) are stacked: dof = num_velocity_fields * NodeStride().
+  PetscInt  num_velocity_fields = 1;
+  PetscInt  NodeStride() const { return 1 + 2 * dim; }
+  // Ownership of node indices per direction, for owner-rank computation (petsc.md 3).
+  PetscMPIInt              procs[3] = {1, 1, 1};
+  std::vector<PetscInt>    start[3]; // start[d][r] = first node owned by slot r, with start[d][procs] = M
+  // Local ghosted box of the node DMDA.
+  PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
+  Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
+  Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
+  PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
+};
+
+struct Diagnostics {
+  PetscReal external_work       = 0; // J, work of body forces and tractions (this rank)
+  PetscReal removed_energy      = 0; // J, kinetic + internal energy of removed particles (this rank)
+  PetscReal removed_mass        = 0; // kg (this rank)
+  PetscInt  removed_particles   = 0; // this rank
+  PetscReal initial_energy      = 0; // J, global
+  PetscReal max_error_displacement = 0; // analytic solutions: max over monitor steps of the L2 error
+  PetscReal last_error_displacement = 0;
+};
+
+struct Simulation {
+  MPI_Comm    comm = PETSC_COMM_WORLD;
+  PetscMPIInt rank = 0, size = 1;
+
+  // Run control
+  std::string scene = "unnamed";
+  std::string output_dir = "output";
+  PetscReal   final_time = 1.0, cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
+  PetscInt    max_steps = PETSC_MAX_INT;
+  StepScheme  scheme = StepScheme::USL;
+  PetscReal   flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
+  FUpdate     f_update = FUpdate::Linear;
+  ShapeType   shape = ShapeType::Linear;
+  OutsidePolicy outside = OutsidePolicy::Error;
+  PetscReal   gravity[3] = {0, 0, 0};
+  PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void
+  PetscReal   mass_cutoff = 0;             // kg, from the fraction and the densest material
+
+  // Output
+  PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)
+  PetscInt  monitor_interval = 10;
+  PetscBool write_grid = PETSC_TRUE;
+  PetscBool progress = PETSC_TRUE;
+  PetscInt  track_pid = -1;      // particle id to trace in the monitor, -1 = none
+  std::vector<PetscInt> output_steps; std::vector<PetscReal> output_times;
+
+  // Objects
+  Grid                                    grid;
+  DM                                      swarm = nullptr;
+  std::vector<std::unique_ptr<Material>>  materials;
+  std::vector<std::unique_ptr<Geometry>>  geometries;
+  std::vector<LoadCurve>                  load_curves;
+  std::unique_ptr<AnalyticSolution>       analytic;
+
+  // State
+  PetscInt  step = 0;
+  PetscReal time = 0, dt = 0;
+  PetscInt64 total_particles = 0; // global count, checked after every migration
+  PetscInt64 next_pid = 0;        // next unused particle id (global)
+  PetscInt64 particle_steps = 0;  // global sum over steps of the particle count
+  PetscLogDouble wall_start = 0, wall_stepping = 0;
+  Diagnostics diag;
+  std::vector<PetscReal> F_old; // scratch: deformation gradients at t_n (grown, never shrunk)
+
+  // Events and stages for -log_view
+  PetscLogStage stage_setup, stage_step, stage_output;
+  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor;
+
+  ~Simulation();
+};
+
+// Phases and components (one file each in src/).
+PetscErrorCode ReadRunOptions(Simulation &sim);
+PetscErrorCode CreateGrid(Simulation &sim);
+PetscErrorCode CreateMaterials(Simulation &sim);
+PetscErrorCode ReadLoadCurves(Simulation &sim);
+PetscErrorCode ReadGeometries(Simulation &sim);
+PetscErrorCode CreateSwarm(Simulation &sim);
+PetscErrorCode SeedParticles(Simulation &sim);
+PetscErrorCode CreateAnalyticSolution(Simulation &sim);
+PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim);
+
+PetscErrorCode ComputeTimeStep(Simulation &sim);
+PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim);
+PetscErrorCode ComputeExternalForces(Simulation &sim);
+
+struct P2GRequest { PetscBool mass, momentum, force; };
+PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what);
+PetscErrorCode GridUpdate(Simulation &sim);
+PetscErrorCode GridVelocityFromMomentum(Simulation &sim);
+
+struct G2PRequest { PetscBool velocity, position, velocity_gradient; };
+PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what);
+PetscErrorCode UpdateDeformation(Simulation &sim);
+PetscErrorCode UpdateStress(Simulation &sim);
+PetscErrorCode CheckParticleState(Simulation &sim, const char phase[]);
+PetscErrorCode MigrateParticles(Simulation &sim);
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
+
+PetscErrorCode TakeStep(Simulation &sim);
+
+// Output and diagnostics (src/io/)
+PetscErrorCode OutputSetUp(Simulation &sim);
+PetscErrorCode WriteOutput(Simulation &sim);
+PetscErrorCode MonitorSetUp(Simulation &sim);
+PetscErrorCode Monitor(Simulation &sim, PetscBool force);
+PetscErrorCode WriteSummary(Simulation &sim);
+struct EnergyReport {
+  PetscReal kinetic, internal, external_work, removed, total, balance_error;
+  PetscReal momentum[3];
+  PetscReal mass;
+};
+PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r);
+
+// Atomic file writes: write to a temporary name, then rename (rank 0).
+PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::string &final_name);
+
+} // namespace burst

@@ -1,0 +1,178 @@
+// Material points: a DMSWARM_BASIC swarm whose owner ranks burst computes from the node DMDA's
+// ownership ranges (petsc.md 3, 4.1-4.2). BASIC migration sends each point straight to its owner at
+// any distance, so nothing is lost silently; burst still compares the global count before and after.
+#include "simulation.hpp"
+#include "util.hpp"
+#include <cmath>
+
+namespace burst {
+
+PetscErrorCode CreateSwarm(Simulation &sim)
+{
+  const PetscInt dim = sim.grid.dim;
+  DM             sw;
+  PetscFunctionBeginUser;
+  PetscCall(DMCreate(sim.comm, &sw));
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)sw, "swarm_"));
+  PetscCall(DMSetType(sw, DMSWARM));
+  PetscCall(DMSetDimension(sw, dim));
+  PetscCall(DMSwarmSetType(sw, DMSWARM_BASIC));
+  // Coordinates and cell id first, under the PIC names, as DMSwarm's own viewers expect.
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, DMSwarmPICField_coor, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, DMSwarmPICField_cellid, 1, PETSC_INT));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::velocity, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::mass, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::volume, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::volume0, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::position0, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::half_width0, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::F, 9, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::stress, 9, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::L, 9, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::temperature, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::wave_speed, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::internal_energy, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::external_force, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::traction_area0, dim, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::load_curve, 1, PETSC_INT));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
+  for (auto &m : sim.materials) PetscCall(m->RegisterFields(sw));
+  PetscCall(DMSwarmFinalizeFieldRegister(sw));
+  // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).
+  PetscCall(DMSwarmSetLocalSizes(sw, 0, 16));
+  sim.swarm = sw;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Slot r of sorted starts with start[r] <= i < start[r+1].
+static inline PetscInt FindSlot(const std::vector<PetscInt> &start, PetscInt i)
+{
+  PetscInt lo = 0, hi = (PetscInt)start.size() - 2;
+  while (lo < hi) {
+    const PetscInt mid = (lo + hi + 1) / 2;
+    if (start[mid] <= i) lo = mid;
+    else hi = mid - 1;
+  }
+  return lo;
+}
+
+// Writes the owner rank (DMSwarm_rank) and local cell id of every particle. Particles outside the
+// domain get rank -1 and are counted in num_outside.
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
+{
+  const Grid &g = sim.grid;
+  PetscInt    n, outside = 0;
+  PetscReal  *x;
+  PetscInt   *rank, *cell;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscInt slot[3] = {0, 0, 0}, c[3] = {0, 0, 0};
+    bool     inside  = true;
+    for (PetscInt d = 0; d < g.dim; ++d) {
+      const PetscReal xd = x[p * g.dim + d];
+      if (!(xd >= g.lower[d] && xd <= g.upper[d])) { // also catches NaN
+        inside = false;
+        break;
+      }
+      c[d]    = PetscMin((PetscInt)std::floor((xd - g.lower[d]) / g.h[d]), g.cells[d] - 1);
+      slot[d] = FindSlot(g.start[d], c[d]);
+    }
+    if (!inside) {
+      rank[p] = -1;
+      cell[p] = -1;
+      ++outside;
+      continue;
+    }
+    rank[p] = slot[0] + g.procs[0] * (slot[1] + g.procs[1] * slot[2]);
+    cell[p] = c[0] + g.cells[0] * (c[1] + g.cells[1] * c[2]);
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  *num_outside = outside;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Removes the particles flagged with rank -1 by compaction (petsc.md 4.3), adding their mass and
+// energy to the diagnostics.
+static PetscErrorCode RemoveOutsideParticles(Simulation &sim)
+{
+  PetscInt   n, dim = sim.grid.dim, keep = 0;
+  PetscInt  *rank;
+  PetscReal *mass, *v, *energy;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&energy));
+  std::vector<PetscInt> survivors;
+  survivors.reserve(n);
+  for (PetscInt p = 0; p < n; ++p) {
+    if (rank[p] >= 0) {
+      survivors.push_back(p);
+      continue;
+    }
+    PetscReal v2 = 0;
+    for (PetscInt d = 0; d < dim; ++d) v2 += v[p * dim + d] * v[p * dim + d];
+    sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
+    sim.diag.removed_mass += mass[p];
+    sim.diag.removed_particles++;
+  }
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&energy));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+  keep = (PetscInt)survivors.size();
+  if (keep == n) PetscFunctionReturn(PETSC_SUCCESS);
+  for (PetscInt k = 0; k < keep; ++k)
+    if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k)); // copies source into destination
+  PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode MigrateParticles(Simulation &sim)
+{
+  PetscInt   outside = 0, n;
+  PetscInt64 global_outside = 0, removed_before = 0, count = 0, local;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
+  PetscCall(ComputeOwnerRanks(sim, &outside));
+  local = outside;
+  PetscCallMPI(MPI_Allreduce(&local, &global_outside, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  if (global_outside) {
+    if (sim.outside == OutsidePolicy::Error) {
+      PetscInt   np;
+      PetscReal *x;
+      PetscInt  *rank;
+      PetscCall(DMSwarmGetLocalSize(sim.swarm, &np));
+      PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+      PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+      for (PetscInt p = 0; p < np; ++p)
+        if (rank[p] < 0) {
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", sim.rank, sim.step, p, (double)x[p * sim.grid.dim], (double)x[p * sim.grid.dim + 1], sim.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
+          break;
+        }
+      PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+      PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+      SETERRQ(sim.comm, PETSC_ERR_USER, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " particle(s) left the domain (-mpm_outside_domain error); enlarge -grid_lower/-grid_upper or use -mpm_outside_domain remove", sim.step, global_outside);
+    }
+    removed_before = sim.diag.removed_particles;
+    PetscCall(RemoveOutsideParticles(sim));
+    PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", sim.step, sim.diag.removed_particles - (PetscInt)removed_before));
+    sim.total_particles -= global_outside;
+  }
+  PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE));
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  local = n;
+  PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
+  PetscCall(PetscLogEventEnd(sim.ev_migrate, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst
