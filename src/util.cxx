@@ -11,7 +11,8 @@ PetscErrorCode FunctionListNames(PetscFunctionList list, std::string &names)
   PetscFunctionBeginUser;
   PetscCall(PetscFunctionListGet(list, &array, &n));
   names.clear();
-  for (int i = 0; i < n; ++i) names += std::string(i ? ", " : "") + array[i];
+  for (int i = 0; i < n; ++i) // 3.18 counts a terminating NULL entry
+    if (array[i]) names += std::string(names.empty() ? "" : ", ") + array[i];
   PetscCall(PetscFree(array));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -29,6 +29,7 @@ struct ParticleOutputField {
   PetscInt    out_bs;     // components written (vectors padded to 3 for ParaView)
   bool        is_int;
   bool        displacement; // x - X0
+  bool        is_int64 = false;
 };
 } // namespace
 
@@ -73,7 +74,8 @@ static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, co
     for (PetscInt c = 0; c < f.out_bs; ++c) {
       PetscReal value = 0;
       if (c < f.bs) {
-        if (f.is_int) value = (PetscReal)((PetscInt *)data)[p * f.bs + c];
+        if (f.is_int64) value = (PetscReal)((PetscInt64 *)data)[p * f.bs + c]; // exact below 2^53
+        else if (f.is_int) value = (PetscReal)((PetscInt *)data)[p * f.bs + c];
         else value = ((PetscReal *)data)[p * f.bs + c];
         if (f.displacement) value = ((PetscReal *)x)[p * f.bs + c] - value;
       }
@@ -100,6 +102,7 @@ static std::vector<ParticleOutputField> ParticleFields(PetscInt dim)
     {field::temperature, "temperature", 1, 1, false, false},
     {field::internal_energy, "internal_energy", 1, 1, false, false},
     {field::material, "material", 1, 1, true, false},
+    {DMSwarmField_pid, "id", 1, 1, true, false, true},
   };
 }
 

@@ -11,11 +11,12 @@
 //               (Wallstedt & Guilkey 2008).
 //   bspline2    NS = 3, uniform quadratic B-spline centred on the nodes (Steffen et al. 2008).
 //
-// Walls: node indices outside [0, M-1] are clamped onto the wall node ("folding"). The weights are
-// unchanged, so the partition of unity and sum of gradients = 0 hold everywhere and no mass is lost
-// at a wall. Linear fields are reproduced exactly wherever the support lies inside the domain (all
-// of the domain for linear and GIMP with particles inside it; all but the half cell next to a wall
-// for the B-spline, where folding moves the weight of the outside node onto the wall node).
+// Walls: a support node outside [0, M-1] (only node -1 or M can occur for a particle inside the
+// domain) is replaced by linear extrapolation from the two nodes inside, f_{-1} = 2 f_0 - f_1:
+// its weight moves as w_0 += 2 w_{-1}, w_1 -= w_{-1} (same for the gradients). Constants and linear
+// fields stay exact up to the wall, no mass leaves the domain, and for the B-spline and GIMP the
+// weights stay non-negative (w_1 >= w_{-1} whenever node -1 is in the support). A particle on a wall
+// node maps fully onto it.
 #pragma once
 #include <cmath>
 #include <petscsys.h>
@@ -74,6 +75,26 @@ inline void GimpWeight(PetscReal d, PetscReal h, PetscReal lp, PetscReal &w, Pet
   }
 }
 
+// Moves the weight of a node outside the grid onto the two nearest inside nodes (see the header).
+inline void ExtrapolateWallNodes(const Axis &a, PetscInt nearest, PetscInt idx[], PetscReal w[], PetscReal dw[])
+{
+  if (nearest - 1 < 0 && a.nodes > 1) {
+    w[1] += 2 * w[0];
+    w[2] -= w[0];
+    dw[1] += 2 * dw[0];
+    dw[2] -= dw[0];
+    w[0] = dw[0] = 0;
+  }
+  if (nearest + 1 > a.nodes - 1 && a.nodes > 1) {
+    w[1] += 2 * w[2];
+    w[0] -= w[2];
+    dw[1] += 2 * dw[2];
+    dw[0] -= dw[2];
+    w[2] = dw[2] = 0;
+  }
+  for (int k = 0; k < 3; ++k) idx[k] = ClampNode(nearest - 1 + k, a.nodes);
+}
+
 // GIMP: nodes nearest-1 .. nearest+1. lp is the particle half-width in this direction.
 inline void GimpWeights1D(const Axis &a, PetscReal x, PetscReal lp, PetscInt idx[], PetscReal w[], PetscReal dw[])
 {
@@ -82,8 +103,8 @@ inline void GimpWeights1D(const Axis &a, PetscReal x, PetscReal lp, PetscInt idx
   for (int k = 0; k < 3; ++k) {
     const PetscInt node = nearest - 1 + k;
     GimpWeight(x - (a.origin + node * a.h), a.h, lp, w[k], dw[k]);
-    idx[k] = ClampNode(node, a.nodes);
   }
+  ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
 
 // Quadratic B-spline centred on nodes: N(r) = 3/4 - r^2 (|r| < 1/2), (3/2 - |r|)^2/2 (|r| < 3/2).
@@ -99,7 +120,7 @@ inline void BSpline2Weights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscR
   dw[0] = -(0.5 - r) / a.h;
   dw[1] = -2.0 * r / a.h;
   dw[2] = (0.5 + r) / a.h;
-  for (int k = 0; k < 3; ++k) idx[k] = ClampNode(nearest - 1 + k, a.nodes);
+  ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
 
 // Weights of one particle in all directions.

@@ -1,0 +1,299 @@
+#!/usr/bin/python3
+"""Quick-look plots of a burst run.
+
+    /usr/bin/python3 scripts/plot_run.py OUTPUT_DIR [--field NAME]
+
+Writes into OUTPUT_DIR
+  particles.png  the particles of the last particles_NNNNNN.h5, coloured by a field (default: von
+                 Mises stress); marker sizes follow each particle's volume so a body looks solid.
+                 3-D output is drawn as an x-y projection of all particles seen from +z (particles
+                 with larger z are drawn on top).
+  energy.png     kinetic, internal and total minus external work against time from monitor.csv,
+                 with the relative energy balance error in a small panel below.
+
+Fields (--field): vonmises (sqrt(3/2 s:s) of the Cauchy stress), pressure (-tr(sigma)/3), speed,
+displacement (magnitude), temperature, material; any other dataset in /particles is accepted too
+(its magnitude if it has several components).
+
+Needs numpy, h5py and matplotlib: use Debian's /usr/bin/python3.
+"""
+import argparse
+import glob
+import json
+import os
+import re
+import sys
+
+import numpy as np
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import colors  # noqa: E402
+from mpl_toolkits.axes_grid1 import make_axes_locatable  # noqa: E402
+
+try:
+    import h5py
+except ImportError:  # pragma: no cover - environment problem, not a data problem
+    sys.exit("plot_run.py: h5py is not available in %s; run the script with Debian's /usr/bin/python3" % sys.executable)
+
+BUILTIN_FIELDS = ("vonmises", "pressure", "speed", "displacement", "temperature", "material")
+DPI = 150
+
+
+def fail(message):
+    sys.exit("plot_run.py: error: " + message)
+
+
+def last_particle_file(outdir):
+    """The particles_NNNNNN.h5 with the largest step number (the width of NNNNNN may grow)."""
+    files = []
+    for path in glob.glob(os.path.join(glob.escape(outdir), "particles_*.h5")):
+        m = re.fullmatch(r"particles_(\d+)\.h5", os.path.basename(path))
+        if m:
+            files.append((int(m.group(1)), path))
+    if not files:
+        fail("no particles_*.h5 files in %s (a burst run writes them every -output_interval steps)" % outdir)
+    return max(files)[1], len(files)
+
+
+def scalar_attr(group, name, default=None):
+    if name not in group.attrs:
+        return default
+    value = np.ravel(group.attrs[name])
+    return value[0].item() if value.size else default
+
+
+def read_particles(path):
+    with h5py.File(path, "r") as f:
+        if "particles" not in f:
+            fail("%s has no /particles group" % path)
+        g = f["particles"]
+        data = {name: np.asarray(g[name][()]) for name in g if isinstance(g[name], h5py.Dataset)}
+        time = scalar_attr(g, "time")
+        step = scalar_attr(g, "step")
+    if "coordinates" not in data:
+        fail("%s has no /particles/coordinates" % path)
+    x = data["coordinates"]
+    if x.ndim == 1:  # a single particle or 1-D data
+        x = x.reshape(x.shape[0], -1) if x.size else x.reshape(0, 2)
+    data["coordinates"] = x
+    return data, time, step
+
+
+def as_rows(a, n):
+    """Dataset as an [n][k] array (PETSc drops the second dimension of block size 1)."""
+    a = np.asarray(a, dtype=float)
+    return a.reshape(n, -1) if n else a.reshape(0, max(1, a.size))
+
+
+def field_values(data, name, n):
+    """Values to colour by, colour-bar label and whether the field is categorical."""
+    def need(dataset):
+        if dataset not in data:
+            fail("field %s needs /particles/%s, which this file does not have" % (name, dataset))
+        return as_rows(data[dataset], n)
+
+    if name == "vonmises":
+        sigma = need("stress")
+        if sigma.shape[1] != 9:
+            fail("/particles/stress has %d components per particle, expected 9" % sigma.shape[1])
+        sigma = sigma.reshape(n, 3, 3)
+        dev = sigma - np.trace(sigma, axis1=1, axis2=2)[:, None, None] / 3.0 * np.eye(3)
+        return np.sqrt(1.5 * np.einsum("pij,pij->p", dev, dev)), "von Mises stress [Pa]", False
+    if name == "pressure":
+        sigma = need("stress")
+        return -(sigma[:, 0] + sigma[:, 4] + sigma[:, 8]) / 3.0, "pressure -tr(σ)/3 [Pa]", False
+    if name == "speed":
+        return np.linalg.norm(need("velocity"), axis=1), "speed [m/s]", False
+    if name == "displacement":
+        return np.linalg.norm(need("displacement"), axis=1), "displacement magnitude [m]", False
+    if name == "temperature":
+        return need("temperature")[:, 0], "temperature [K]", False
+    if name == "material":
+        return need("material")[:, 0], "material index", True
+    if name in data:
+        values = as_rows(data[name], n)
+        if values.shape[1] == 1:
+            return values[:, 0], name, False
+        return np.linalg.norm(values, axis=1), "|%s|" % name, False
+    fail("unknown field %s: choose one of %s, or a dataset in /particles (%s)"
+         % (name, ", ".join(BUILTIN_FIELDS), ", ".join(sorted(data))))
+
+
+def load_summary(outdir):
+    path = os.path.join(outdir, "summary.json")
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return {}
+
+
+def plot_particles(outdir, field, summary):
+    path, nfiles = last_particle_file(outdir)
+    data, time, step = read_particles(path)
+    x = data["coordinates"]
+    n, dim = x.shape
+    values, label, categorical = field_values(data, field, n)
+
+    # Edge length of each particle's share of the body: the volume is an area in 2-D.
+    if "volume" in data and n:
+        vol = as_rows(data["volume"], n)[:, 0]
+    else:
+        vol = np.full(n, np.nan)
+    edge = np.abs(vol) ** (1.0 / max(dim, 1))
+    good_edge = np.isfinite(edge) & (edge > 0)
+    if n and not good_edge.all():  # fall back on the typical spacing
+        fallback = np.median(edge[good_edge]) if good_edge.any() else 0.0
+        edge = np.where(good_edge, edge, fallback)
+
+    xy = x[:, :2] if dim >= 2 else np.column_stack([x[:, 0], np.zeros(n)])
+    if dim == 3:  # painter's order: particles with larger z on top (view from +z)
+        order = np.argsort(x[:, 2], kind="stable")
+        xy, values, edge = xy[order], values[order], edge[order]
+
+    fig, ax = plt.subplots(figsize=(7.5, 6.5), dpi=DPI)
+    finite_xy = np.isfinite(xy).all(axis=1)
+    if n and finite_xy.any():
+        lo, hi = xy[finite_xy].min(axis=0), xy[finite_xy].max(axis=0)
+        pad = 0.04 * max(hi - lo) + (np.max(edge[finite_xy]) if n else 0)
+        pad = pad if pad > 0 else 1.0
+        ax.set_xlim(lo[0] - pad, hi[0] + pad)
+        ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal", adjustable="box")
+
+    finite_v = values[np.isfinite(values)]
+    cmap = plt.get_cmap("viridis")
+    norm = None
+    ticks = None
+    if categorical and finite_v.size:
+        levels = np.unique(finite_v)
+        base = plt.get_cmap("tab10")
+        cmap = colors.ListedColormap([base(i % 10) for i in range(len(levels))])
+        bounds = np.concatenate([[levels[0] - 0.5], (levels[:-1] + levels[1:]) / 2, [levels[-1] + 0.5]])
+        norm = colors.BoundaryNorm(bounds, cmap.N)
+        ticks = levels
+    elif field == "pressure" and finite_v.size:
+        vmax = np.max(np.abs(finite_v)) or 1.0
+        cmap = plt.get_cmap("coolwarm")
+        norm = colors.Normalize(-vmax, vmax)
+    elif finite_v.size:
+        vmin, vmax = finite_v.min(), finite_v.max()
+        if vmax <= vmin:  # constant field: give the colour bar some range
+            delta = abs(vmin) * 1e-3 or 1.0
+            vmin, vmax = vmin - delta, vmax + delta
+        norm = colors.Normalize(vmin, vmax)
+
+    sc = ax.scatter(xy[:, 0], xy[:, 1], c=values, s=1.0, marker="o", linewidths=0, cmap=cmap, norm=norm)
+    cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.12)
+    cb = fig.colorbar(sc, cax=cax, ticks=ticks)
+    cb.set_label(label)
+    if ticks is not None:
+        cb.ax.set_yticklabels(["%d" % t for t in ticks])
+    if n == 0:
+        ax.text(0.5, 0.5, "no particles", transform=ax.transAxes, ha="center", va="center")
+
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    scene = summary.get("scene") or os.path.basename(os.path.normpath(outdir))
+    when = "t = %.6g s" % time if time is not None else "t = ?"
+    if step is not None:
+        when += ", step %d" % step
+    view = ", x-y projection seen from +z" if dim == 3 else ""
+    ax.set_title("%s: %s\n%s, %d particles%s" % (scene, label.split(" [")[0], when, n, view), fontsize=11)
+
+    # Marker diameter = 1.5 x particle edge, so that the circles of neighbours on a square lattice
+    # (which need sqrt(2) x edge) leave no gaps and the body looks solid; in points, which needs the
+    # final axes size, so lay the figure out first.
+    fig.canvas.draw()
+    (x0, _), (x1, _) = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])
+    points_per_metre = abs(x1 - x0) * 72.0 / fig.dpi
+    sc.set_sizes((1.5 * edge * points_per_metre) ** 2)
+
+    out = os.path.join(outdir, "particles.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out, path, nfiles
+
+
+def read_monitor(outdir):
+    path = os.path.join(outdir, "monitor.csv")
+    if not os.path.exists(path):
+        return None, "no monitor.csv in %s" % outdir
+    try:
+        table = np.genfromtxt(path, delimiter=",", names=True, invalid_raise=False)
+    except ValueError as e:
+        return None, "could not read %s: %s" % (path, e)
+    if table.dtype.names is None or table.size == 0:
+        return None, "%s has no data rows" % path
+    table = np.atleast_1d(table)
+    missing = [c for c in ("time", "kinetic", "internal", "total", "external_work", "balance_error")
+               if c not in table.dtype.names]
+    if missing:
+        return None, "%s lacks the column(s) %s" % (path, ", ".join(missing))
+    return table, None
+
+
+def plot_energy(outdir, summary):
+    table, problem = read_monitor(outdir)
+    if table is None:
+        return None, problem
+    t = table["time"]
+    fig, (ax, axe) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), dpi=DPI,
+                                  gridspec_kw={"height_ratios": [3, 1], "hspace": 0.08})
+    style = {"marker": "." if t.size < 60 else None, "lw": 1.5}
+    ax.plot(t, table["kinetic"], label="kinetic", color="tab:blue", **style)
+    ax.plot(t, table["internal"], label="internal (stress work)", color="tab:orange", **style)
+    ax.plot(t, table["total"] - table["external_work"], label="total − external work", color="black", **style)
+    ax.set_ylabel("energy [J] (per metre in 2-D)" if summary.get("dim") == 2 else "energy [J]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=9)
+    scene = summary.get("scene") or os.path.basename(os.path.normpath(outdir))
+    ax.set_title("%s: energy balance%s" % (scene, " (%s)" % summary["scheme"] if "scheme" in summary else ""), fontsize=11)
+
+    # Scale the error by hand: matplotlib's offset text ("1e-3") would sit on the panel above.
+    err = table["balance_error"]
+    finite = np.abs(err[np.isfinite(err)])
+    exponent = int(np.floor(np.log10(finite.max()))) if finite.size and finite.max() > 0 else 0
+    exponent = exponent if exponent < -1 or exponent > 2 else 0
+    axe.plot(t, err / 10.0 ** exponent, color="tab:red", **style)
+    axe.axhline(0.0, color="gray", lw=0.8)
+    axe.set_ylabel("relative\nbalance error" + ("\n[×1e%d]" % exponent if exponent else ""), fontsize=9)
+    axe.set_xlabel("time [s]")
+    axe.grid(True, alpha=0.3)
+    if t.size == 1:  # a single row: give the time axis some width
+        ax.set_xlim(t[0] - 0.5, t[0] + 0.5) if t[0] == 0 else ax.set_xlim(0, 1.05 * t[0])
+
+    out = os.path.join(outdir, "energy.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out, None
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description="Plot the particles and the energy balance of a burst run.")
+    parser.add_argument("output_dir", help="the -output_dir of a burst run")
+    parser.add_argument("--field", default="vonmises",
+                        help="colour particles by: %s (default vonmises), or any /particles dataset"
+                        % ", ".join(BUILTIN_FIELDS))
+    args = parser.parse_args(argv)
+
+    outdir = args.output_dir
+    if not os.path.isdir(outdir):
+        fail("%s is not a folder" % outdir)
+    summary = load_summary(outdir)
+
+    png, source, nfiles = plot_particles(outdir, args.field, summary)
+    print("wrote %s (%s, last of %d particle file%s)" % (png, os.path.basename(source), nfiles, "" if nfiles == 1 else "s"))
+    png, problem = plot_energy(outdir, summary)
+    if png is None:
+        print("plot_run.py: warning: energy.png not written: %s" % problem, file=sys.stderr)
+    else:
+        print("wrote %s" % png)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# The main job: builds burst if needed, runs the default scene on 2 MPI ranks, prints its summary and
+# draws the pictures. Usage: scripts/run-main.sh [extra burst options]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+scene=options/scenes/colliding_disks.opts
+out=output/colliding_disks
+mpiexec --allow-run-as-root --oversubscribe -x OMP_NUM_THREADS=1 -n 2 build/burst -options_file "$scene" -output_dir "$out" "$@"
+/usr/bin/python3 scripts/plot_run.py "$out"
+echo "main: summary in $out/summary.json, pictures $out/particles.png and $out/energy.png, ParaView: $out/particles.xmf"

@@ -1,0 +1,240 @@
+#!/usr/bin/python3
+"""Verification drivers for burst: each subcommand runs real option files through the burst
+executable, compares the output with an analytic answer, prints the measured figures with a
+verdict, and exits non-zero on failure. ctest calls them (tests/CMakeLists.txt).
+
+  bar          axial bar vibration, period and tip amplitude (verification.md 1.1)
+  convergence  axis-aligned manufactured solution, error at three resolutions and observed order
+               (Wallstedt & Guilkey 2008; verification.md 1.3)
+  disks        colliding elastic disks, energy drift with FLIP and PIC (Sulsky 1994; verification.md 1.2)
+  parallel     the same deck on 1 and 2 ranks: particle count, positions and energies agree
+  deck         an option file runs a few steps and writes its summary
+"""
+import argparse
+import csv
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+import h5py
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
+
+
+def run(burst, deck, out, extra=(), ranks=1):
+    cmd = ([*MPIEXEC, "-n", str(ranks)] if ranks > 1 else []) + [burst, "-options_file", deck, "-output_dir", out, "-progress", "false", *extra]
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    if proc.returncode != 0:
+        sys.stdout.write(proc.stdout[-4000:])
+        sys.stdout.write(proc.stderr[-4000:])
+        raise SystemExit(f"FAIL: burst exited with {proc.returncode}: {' '.join(cmd)}")
+    with open(os.path.join(out, "summary.json")) as f:
+        return json.load(f)
+
+
+def monitor(out):
+    with open(os.path.join(out, "monitor.csv")) as f:
+        rows = list(csv.DictReader(f))
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def check(name, value, tol, failures, fmt="{:.3e}"):
+    ok = value <= tol
+    print(f"  {name}: " + fmt.format(value) + f" (tol {tol:g}) {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append(name)
+
+
+def finish(test, failures):
+    if failures:
+        print(f"{test}: FAIL ({', '.join(failures)})")
+        sys.exit(1)
+    print(f"{test}: OK")
+
+
+def bar(args):
+    """Period from the upward zero crossings of the tip displacement; amplitude from its extremes."""
+    deck = os.path.join(ROOT, "tests/decks/bar_vibration.opts")
+    length, v0, E, rho = 25.0, 0.1, 100.0, 1.0
+    omega = math.pi / (2 * length) * math.sqrt(E / rho)
+    failures, errors = [], []
+    for cells_along in (15, 30):
+        h = length / cells_along
+        cells_x = int(round(30.0 / h))
+        ppc = 2
+        # the tip particle: last particle of the first row (pids run x fastest in each cell, cells x fastest)
+        tip = (cells_along - 1) * ppc * ppc + (ppc - 1)
+        with tempfile.TemporaryDirectory() as out:
+            run(args.burst, deck, out, ["-mpm_shape_type", args.shape, "-grid_upper", f"{cells_x * h},{h}", "-grid_cells", f"{cells_x},1",
+                                        "-rod_upper", f"{length},{h}", "-monitor_track_pid", str(tip), "-mpm_final_time", "30"])
+            m = monitor(out)
+        t, u = m["time"], m["track_ux"]
+        X = m["track_x"][0]
+        crossings = []
+        for k in range(1, len(t)):
+            if u[k - 1] < 0 <= u[k]:
+                crossings.append(t[k - 1] + (t[k] - t[k - 1]) * (-u[k - 1]) / (u[k] - u[k - 1]))
+        period = np.mean(np.diff(crossings)) if len(crossings) >= 2 else float("nan")
+        amplitude = 0.5 * (u.max() - u.min())
+        exact_period = 2 * math.pi / omega
+        exact_amplitude = v0 / omega * math.sin(math.pi * X / (2 * length))
+        e_period = abs(period - exact_period) / exact_period
+        e_amp = abs(amplitude - exact_amplitude) / exact_amplitude
+        drift = abs(m["balance_error"][-1])
+        print(f"bar_vibration {args.shape}, {cells_along} cells: period {period:.5f} s (exact {exact_period:.5f}), "
+              f"tip amplitude {amplitude:.5f} m (exact {exact_amplitude:.5f} at X = {X:.4f} m), energy drift {drift:.2e}")
+        check("period relative error", e_period, args.tol_period, failures)
+        check("amplitude relative error", e_amp, args.tol_amplitude, failures)
+        errors.append(e_period + e_amp)
+    ok = errors[1] < errors[0]
+    print(f"  combined error falls with refinement: {errors[0]:.3e} -> {errors[1]:.3e} {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("refinement")
+    finish(f"bar_vibration[{args.shape}]", failures)
+
+
+def convergence(args):
+    deck = os.path.join(ROOT, "tests/decks/mms_axis_aligned.opts")
+    cells = [int(c) for c in args.cells.split(",")]
+    errors = []
+    for n in cells:
+        extra = ["-mpm_shape_type", args.shape, "-mpm_scheme", args.scheme]
+        if args.dim == 3:
+            extra += ["-dim", "3", "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", f"{n},{n},{n}", "-square_lower", "0,0,0",
+                      "-square_upper", "1,1,1", "-bc_zmin", "symmetry", "-bc_zmax", "symmetry"]
+        else:
+            extra += ["-grid_cells", f"{n},{n}"]
+        if args.dt:
+            extra += ["-mpm_dt", args.dt]
+        with tempfile.TemporaryDirectory() as out:
+            s = run(args.burst, deck, out, extra)
+        errors.append(s["displacement_error_rms"])
+    orders = [math.log(errors[k] / errors[k + 1]) / math.log(cells[k + 1] / cells[k]) for k in range(len(cells) - 1)]
+    print(f"mms_axis_aligned {args.dim}-D {args.shape} {args.scheme}: cells {cells}, rms displacement error "
+          + ", ".join(f"{e:.3e}" for e in errors) + " m; observed order " + ", ".join(f"{o:.2f}" for o in orders))
+    failures = []
+    if args.min_order is not None:
+        ok = orders[-1] >= args.min_order
+        print(f"  finest observed order {orders[-1]:.2f} >= {args.min_order} {'OK' if ok else 'FAIL'}")
+        if not ok:
+            failures.append("order")
+    if args.max_order is not None:
+        ok = orders[-1] <= args.max_order
+        print(f"  finest observed order {orders[-1]:.2f} <= {args.max_order} (stalls: cell-crossing error) {'OK' if ok else 'FAIL'}")
+        if not ok:
+            failures.append("stall")
+    if args.max_error is not None:
+        check("finest rms error (m)", errors[-1], args.max_error, failures)
+    finish(f"convergence[{args.dim}d,{args.shape},{args.scheme}]", failures)
+
+
+def disks(args):
+    deck = os.path.join(ROOT, "options/scenes/colliding_disks.opts")
+    failures = []
+    results = {}
+    for label, flip in (("FLIP", "1"), ("PIC", "0")):
+        with tempfile.TemporaryDirectory() as out:
+            s = run(args.burst, deck, out, ["-mpm_flip_fraction", flip, "-mpm_scheme", args.scheme, "-output_interval", "0", "-output_grid", "false"])
+            m = monitor(out)
+        e0 = m["total"][0] - m["external_work"][0]
+        drift = (m["total"][-1] - m["external_work"][-1] - e0) / e0
+        worst = np.max(np.abs(m["total"] - m["external_work"] - e0)) / e0
+        momentum = max(abs(s["momentum"][0]), abs(s["momentum"][1])) / (s["mass"] * 0.1)
+        results[label] = drift
+        print(f"colliding_disks {label} {args.scheme}: initial energy {e0:.4f} J/m, final drift {drift:+.3e}, worst {worst:.3e}, "
+              f"kinetic at t_end {m['kinetic'][-1]:.4f} J/m, |momentum|/(M v0) {momentum:.1e}")
+        check(f"{label} momentum (relative)", momentum, 1e-10, failures)
+    check("FLIP energy drift |dE/E0|", abs(results["FLIP"]), args.tol_flip, failures)
+    ok = results["PIC"] < -args.pic_loss
+    print(f"  PIC dissipates: drift {results['PIC']:+.3e} < -{args.pic_loss} {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("PIC dissipation")
+    finish(f"colliding_disks[{args.scheme}]", failures)
+
+
+def read_particles(out):
+    files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
+    with h5py.File(os.path.join(out, files[-1]), "r") as f:
+        g = f["particles"]
+        order = np.argsort(g["id"][...].ravel())
+        return {k: g[k][...][order] for k in ("id", "coordinates", "velocity", "stress")}
+
+
+def parallel(args):
+    deck = os.path.join(ROOT, args.deck)
+    extra = ["-mpm_max_steps", str(args.steps), "-output_interval", "0", *args.extra.split()]
+    failures = []
+    with tempfile.TemporaryDirectory() as out1, tempfile.TemporaryDirectory() as out2:
+        s1 = run(args.burst, deck, out1, extra)
+        s2 = run(args.burst, deck, out2, extra, ranks=2)
+        p1, p2 = read_particles(out1), read_particles(out2)
+    print(f"parallel {os.path.basename(args.deck)}: {s1['particles']} particles on 1 rank, {s2['particles']} on 2 ranks after {s1['steps']} steps")
+    same_ids = p1["id"].shape == p2["id"].shape and np.array_equal(p1["id"], p2["id"])
+    print(f"  particle count and ids conserved: {'OK' if same_ids and s1['particles'] == s2['particles'] else 'FAIL'}")
+    if not (same_ids and s1["particles"] == s2["particles"]):
+        finish("parallel", ["count"])
+    size = np.ptp(p1["coordinates"], axis=0).max()
+    dx = np.abs(p1["coordinates"] - p2["coordinates"]).max() / size
+    vscale = max(np.abs(p1["velocity"]).max(), 1e-300)
+    dv = np.abs(p1["velocity"] - p2["velocity"]).max() / vscale
+    sscale = max(np.abs(p1["stress"]).max(), 1e-300)
+    ds = np.abs(p1["stress"] - p2["stress"]).max() / sscale
+    de = abs(s1["kinetic_energy"] - s2["kinetic_energy"]) / max(s1["kinetic_energy"], 1e-300)
+    check("max position difference / body size", dx, args.tol, failures)
+    check("max velocity difference / max velocity", dv, args.tol, failures)
+    check("max stress difference / max stress", ds, args.tol, failures)
+    check("kinetic energy difference (relative)", de, args.tol, failures)
+    finish(f"parallel[{os.path.basename(args.deck)}]", failures)
+
+
+def deck(args):
+    with tempfile.TemporaryDirectory() as out:
+        s = run(args.burst, os.path.join(ROOT, args.deck), out, ["-mpm_max_steps", str(args.steps), *args.extra.split()], ranks=args.ranks)
+        ok = s["steps"] >= 1 and s["particles"] > 0 and os.path.exists(os.path.join(out, "particles.xmf"))
+    print(f"deck {args.deck} on {args.ranks} rank(s): {s['steps']} steps, {s['particles']} particles, "
+          f"energy balance error {s['energy_balance_error']:.2e} {'OK' if ok else 'FAIL'}")
+    sys.exit(0 if ok else 1)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--burst", required=True)
+    sub = p.add_subparsers(dest="cmd", required=True)
+    b = sub.add_parser("bar")
+    b.add_argument("--shape", default="linear")
+    b.add_argument("--tol-period", type=float, default=5e-3)
+    b.add_argument("--tol-amplitude", type=float, default=5e-3)
+    c = sub.add_parser("convergence")
+    c.add_argument("--shape", default="cpgimp")
+    c.add_argument("--scheme", default="usl")
+    c.add_argument("--dim", type=int, default=2)
+    c.add_argument("--cells", default="8,16,32")
+    c.add_argument("--dt", default=None)
+    c.add_argument("--min-order", type=float, default=None)
+    c.add_argument("--max-order", type=float, default=None)
+    c.add_argument("--max-error", type=float, default=None)
+    d = sub.add_parser("disks")
+    d.add_argument("--scheme", default="musl")
+    d.add_argument("--tol-flip", type=float, default=5e-3)
+    d.add_argument("--pic-loss", type=float, default=0.05)
+    q = sub.add_parser("parallel")
+    q.add_argument("--deck", required=True)
+    q.add_argument("--steps", type=int, default=50)
+    q.add_argument("--tol", type=float, default=1e-10)
+    q.add_argument("--extra", default="")
+    k = sub.add_parser("deck")
+    k.add_argument("--deck", required=True)
+    k.add_argument("--steps", type=int, default=5)
+    k.add_argument("--ranks", type=int, default=1)
+    k.add_argument("--extra", default="")
+    args = p.parse_args()
+    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck}[args.cmd](args)
+
+
+if __name__ == "__main__":
+    main()
