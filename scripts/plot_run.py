@@ -24,19 +24,17 @@ import os
 import re
 import sys
 
-import numpy as np
-
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib import colors  # noqa: E402
-from mpl_toolkits.axes_grid1 import make_axes_locatable  # noqa: E402
-
 try:
+    import numpy as np
     import h5py
-except ImportError:  # pragma: no cover - environment problem, not a data problem
-    sys.exit("plot_run.py: h5py is not available in %s; run the script with Debian's /usr/bin/python3" % sys.executable)
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import colors
+    from mpl_toolkits.axes_grid1 import make_axes_locatable
+except ImportError as e:  # an interpreter without the Debian packages (e.g. a pyenv python3)
+    sys.exit("plot_run.py: error: %s in %s; run the script with Debian's /usr/bin/python3" % (e, sys.executable))
 
 BUILTIN_FIELDS = ("vonmises", "pressure", "speed", "displacement", "temperature", "material")
 DPI = 150
@@ -85,7 +83,7 @@ def read_particles(path):
 def as_rows(a, n):
     """Dataset as an [n][k] array (PETSc drops the second dimension of block size 1)."""
     a = np.asarray(a, dtype=float)
-    return a.reshape(n, -1) if n else a.reshape(0, max(1, a.size))
+    return a.reshape(n, -1) if n else a.reshape(0, a.shape[1] if a.ndim > 1 else 1)
 
 
 def field_values(data, name, n):

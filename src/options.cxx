@@ -49,7 +49,10 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   choice = (int)sim.outside;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_outside_domain", "A particle leaving the domain: stop with an error, or remove it and count it", OutsidePolicyNames, 2, &choice, nullptr));
   sim.outside = (OutsidePolicy)choice;
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-gravity", "Body acceleration gx,gy[,gz] (m/s^2), one value per dimension", sim.gravity, 3, &set));
+  {
+    PetscInt n = 3;
+    PetscCall(PetscOptionsRealArray("-gravity", "Body acceleration gx,gy[,gz] (m/s^2); missing components are 0", "", sim.gravity, &n, &set));
+  }
   PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 

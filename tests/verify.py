@@ -157,6 +157,36 @@ def disks(args):
     finish(f"colliding_disks[{args.scheme}]", failures)
 
 
+def loads(args):
+    """Resultant of the pressure on a quarter ring = p R_i per metre in x and y: with free faces the
+    total momentum changes by dt times the resultant each step. Gravity: M g."""
+    failures = []
+    deck = os.path.join(ROOT, "tests/decks/pressurized_ring.opts")
+    inner_radius = 0.0508
+    with tempfile.TemporaryDirectory() as out:
+        run(args.burst, deck, out, ["-mpm_max_steps", "40"])
+        m = monitor(out)
+    # the pressure at t_n acts over [t_n, t_n+1]; ramp p(t) = 1e13 t
+    t, px, py = m["time"], m["momentum_x"], m["momentum_y"]
+    impulse = np.sum(1e13 * np.minimum(t[:-1], 1e-5) * np.diff(t)) * inner_radius
+    ex, ey = abs(px[-1] - impulse) / impulse, abs(py[-1] - impulse) / impulse
+    print(f"pressurized_ring: momentum after {len(t) - 1} steps ({px[-1]:.6e}, {py[-1]:.6e}) N s/m, impulse of p R_i {impulse:.6e} N s/m")
+    check("x resultant error (relative)", ex, args.tol, failures)
+    check("y resultant error (relative)", ey, args.tol, failures)
+    with tempfile.TemporaryDirectory() as out:
+        s = run(args.burst, os.path.join(ROOT, "tests/decks/bench_block.opts"), out,
+                ["-gravity", "0,-9.81", "-block_velocity", "0,0", "-mpm_max_steps", "50", "-steel_youngs_modulus", "1e6", "-mpm_scheme", "musl"])
+        m = monitor(out)
+    expected = -9.81 * s["final_time"] * s["mass"]
+    e = abs(s["momentum"][1] - expected) / abs(expected)
+    print(f"gravity: momentum_y {s['momentum'][1]:.9e} after t = {s['final_time']:.4e} s, expected M g t = {expected:.9e}")
+    check("gravity momentum error (relative)", e, 1e-10, failures)
+    work = m["external_work"][-1]
+    ke = m["kinetic"][-1] + m["internal"][-1]
+    check("gravity: work = kinetic + internal energy (relative)", abs(work - ke) / abs(work), 1e-3, failures)
+    finish("loads", failures)
+
+
 def read_particles(out):
     files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
     with h5py.File(os.path.join(out, files[-1]), "r") as f:
@@ -227,13 +257,15 @@ def main():
     q.add_argument("--steps", type=int, default=50)
     q.add_argument("--tol", type=float, default=1e-10)
     q.add_argument("--extra", default="")
+    ld = sub.add_parser("loads")
+    ld.add_argument("--tol", type=float, default=2e-2)
     k = sub.add_parser("deck")
     k.add_argument("--deck", required=True)
     k.add_argument("--steps", type=int, default=5)
     k.add_argument("--ranks", type=int, default=1)
     k.add_argument("--extra", default="")
     args = p.parse_args()
-    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck}[args.cmd](args)
+    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads}[args.cmd](args)
 
 
 if __name__ == "__main__":

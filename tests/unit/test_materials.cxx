@@ -35,6 +35,12 @@ void Report(const std::string &what, double measured, double tol, const char *so
   std::fflush(stdout);
 }
 
+void ReportCode(const std::string &what, PetscErrorCode measured, PetscErrorCode expected, const char *source)
+{
+  std::printf("[ measured ] %-62s %d (expected %d; source: %s)\n", what.c_str(), (int)measured, (int)expected, source);
+  std::fflush(stdout);
+}
+
 // Sets PETSc options for one test and clears them again when it ends, so tests do not see each
 // other's options (each test also uses its own material name).
 class ScopedOptions {
@@ -106,7 +112,7 @@ Material *CreateReference(ScopedOptions &opt, const std::string &name, const std
   return m;
 }
 
-M3 Mat(double a00, double a01, double a02, double a10, double a11, double a12, double a20, double a21, double a22)
+M3 M3of(double a00, double a01, double a02, double a10, double a11, double a12, double a20, double a21, double a22)
 {
   M3 m;
   m << a00, a01, a02, a10, a11, a12, a20, a21, a22;
@@ -149,15 +155,15 @@ TEST(NeoHookean, HandComputedStress)
   EXPECT_EQ(m->Density(), 2000.0);
 
   Points pts(3);
-  pts.SetF(0, Mat(1.1, 0, 0, 0, 1, 0, 0, 0, 1));
-  pts.SetF(1, Mat(1, 0.2, 0, 0, 1, 0, 0, 0, 1));
-  pts.SetF(2, Mat(1.1, 0, 0, 0, 1, 0, 0, 0, 1));
+  pts.SetF(0, M3of(1.1, 0, 0, 0, 1, 0, 0, 0, 1));
+  pts.SetF(1, M3of(1, 0.2, 0, 0, 1, 0, 0, 0, 1));
+  pts.SetF(2, M3of(1.1, 0, 0, 0, 1, 0, 0, 0, 1));
   pts.material[2] = 1; // another material: must be left alone
   pts.SetStress(2, M3::Constant(7.0));
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, 1e-3), 0);
 
-  const M3 expect0 = Mat(123.414429967303248, 0, 0, 0, 49.987856540729822, 0, 0, 0, 49.987856540729822);
-  const M3 expect1 = Mat(15.384615384615385, 76.923076923076923, 0, 76.923076923076923, 0, 0, 0, 0, 0);
+  const M3 expect0 = M3of(123.414429967303248, 0, 0, 0, 49.987856540729822, 0, 0, 0, 49.987856540729822);
+  const M3 expect1 = M3of(15.384615384615385, 76.923076923076923, 0, 76.923076923076923, 0, 0, 0, 0, 0);
   const double err0 = MaxAbs(pts.Stress(0) - expect0) / kMu, err1 = MaxAbs(pts.Stress(1) - expect1) / kMu;
   std::printf("  F = diag(1.1,1,1): sigma_xx = %.15g, sigma_yy = %.15g Pa\n", pts.Stress(0)(0, 0), pts.Stress(0)(1, 1));
   std::printf("  simple shear 0.2:  sigma_xx = %.15g, sigma_xy = %.15g Pa\n", pts.Stress(1)(0, 0), pts.Stress(1)(0, 1));
@@ -176,7 +182,7 @@ TEST(NeoHookean, Objectivity)
   ScopedOptions opt;
   Material     *m = CreateReference(opt, "nh_obj", "neo_hookean");
   ASSERT_NE(m, nullptr);
-  const M3 F = Mat(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12);
+  const M3 F = M3of(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12);
   const M3 R[3] = {Rotation(0.7, {1, 2, 3}), Rotation(2.9, {-1, 0.5, 0.2}), Rotation(M_PI / 2, {0, 0, 1})};
   Points pts(4);
   pts.SetF(0, F);
@@ -206,7 +212,7 @@ TEST(NeoHookean, StressDerivesFromEnergy)
     const double lnJ = std::log(F.determinant());
     return 0.5 * kMu * ((F * F.transpose()).trace() - 3) - kMu * lnJ + 0.5 * kLambda * lnJ * lnJ;
   };
-  const M3 Fs[2] = {Mat(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12), Mat(0.7, 0.3, 0, -0.2, 0.9, 0.1, 0.05, 0, 0.6)};
+  const M3 Fs[2] = {M3of(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12), M3of(0.7, 0.3, 0, -0.2, 0.9, 0.1, 0.05, 0, 0.6)};
   Points   pts(2);
   for (int p = 0; p < 2; ++p) pts.SetF(p, Fs[p]);
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, 1e-3), 0);
@@ -263,12 +269,12 @@ TEST(LinearElastic, UniaxialStrain)
   const double e = 2.0, dt = 1e-4;
   Points       pts(2);
   for (int p = 0; p < 2; ++p) {
-    pts.SetL(p, Mat(e, 0, 0, 0, 0, 0, 0, 0, 0));
-    pts.SetF(p, Mat(1 + e * dt, 0, 0, 0, 1, 0, 0, 0, 1));
+    pts.SetL(p, M3of(e, 0, 0, 0, 0, 0, 0, 0, 0));
+    pts.SetF(p, M3of(1 + e * dt, 0, 0, 0, 1, 0, 0, 0, 1));
   }
   pts.material[1] = 3; // another material: untouched
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
-  const M3     expect = Mat(0.26923076923076923, 0, 0, 0, 0.11538461538461538, 0, 0, 0, 0.11538461538461538);
+  const M3     expect = M3of(0.26923076923076923, 0, 0, 0, 0.11538461538461538, 0, 0, 0, 0.11538461538461538);
   const double err    = MaxAbs(pts.Stress(0) - expect) / 0.26923076923076923;
   const double V_mid = 1e-6 * 0.5 * (1 + 1 / (1 + e * dt)), dE = 0.5 * 0.26923076923076923 * e * dt * V_mid;
   const double err_E = std::fabs(pts.energy[0] - dE) / dE;
@@ -295,10 +301,10 @@ TEST(LinearElastic, PureSpin)
   ASSERT_NE(m, nullptr);
   const double w = 3.0, dt = 1e-3;
   Points       pts(2);
-  for (int p = 0; p < 2; ++p) pts.SetL(p, Mat(0, w, 0, -w, 0, 0, 0, 0, 0));
-  pts.SetStress(1, Mat(100, 0, 0, 0, 0, 0, 0, 0, 0));
+  for (int p = 0; p < 2; ++p) pts.SetL(p, M3of(0, w, 0, -w, 0, 0, 0, 0, 0));
+  pts.SetStress(1, M3of(100, 0, 0, 0, 0, 0, 0, 0, 0));
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
-  const M3     expect1 = Mat(100, -0.3, 0, -0.3, 0, 0, 0, 0, 0);
+  const M3     expect1 = M3of(100, -0.3, 0, -0.3, 0, 0, 0, 0, 0);
   const M3     s1      = pts.Stress(1);
   const double err1    = MaxAbs(s1 - expect1) / 100;
   for (int step = 1; step < 200; ++step) ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
@@ -331,7 +337,9 @@ TEST(LinearElastic, WaveSpeed)
 
 // ---------------------------------------------------------------------------------------------------
 // Bad input must return an error code (not abort, not succeed). Each case has a valid control that
-// differs only in the bad option, so a test cannot pass because of an unrelated mistake.
+// differs only in the bad option, so a test cannot pass because of an unrelated mistake. The code
+// must be PETSC_ERR_USER_INPUT (95), the one every input check in models/ raises; any other non-zero
+// code would mean the call failed somewhere else (e.g. option parsing) before the check was reached.
 
 namespace {
 // Tries to create `name`; returns the error code and deletes whatever was allocated.
@@ -350,8 +358,8 @@ TEST(MaterialInput, ValidControl)
   opt.Material("in_ok_le", "linear_elastic", "7850", "200e9", "0.29");
   opt.Material("in_ok_nh", "neo_hookean", "1000", "1e6", "0.4999");
   const PetscErrorCode a = TryCreate("in_ok_le", false), b = TryCreate("in_ok_nh", false);
-  Report("valid linear_elastic: error code", a, 0, "control");
-  Report("valid neo_hookean (nu = 0.4999): error code", b, 0, "control");
+  ReportCode("valid linear_elastic: error code", a, 0, "control");
+  ReportCode("valid neo_hookean (nu = 0.4999): error code", b, 0, "control");
   EXPECT_EQ(a, 0);
   EXPECT_EQ(b, 0);
 }
@@ -364,14 +372,14 @@ TEST(MaterialInput, MissingOrBadDensity)
   opt.Material("in_negden", "linear_elastic", "-5", "1000", "0.3");
   opt.Material("in_nanden", "linear_elastic", "nan", "1000", "0.3");
   const PetscErrorCode a = TryCreate("in_noden", true), b = TryCreate("in_zeroden", true), c = TryCreate("in_negden", true), d = TryCreate("in_nanden", true);
-  Report("missing -<name>_density: error code", a, 0, "material.hpp: density required");
-  Report("density = 0: error code", b, 0, "material.hpp: density > 0");
-  Report("density = -5: error code", c, 0, "material.hpp: density > 0");
-  Report("density = nan: error code", d, 0, "registry.cxx: density finite");
-  EXPECT_NE(a, 0);
-  EXPECT_NE(b, 0);
-  EXPECT_NE(c, 0);
-  EXPECT_NE(d, 0);
+  ReportCode("missing -<name>_density: error code", a, PETSC_ERR_USER_INPUT, "material.hpp: density required");
+  ReportCode("density = 0: error code", b, PETSC_ERR_USER_INPUT, "material.hpp: density > 0");
+  ReportCode("density = -5: error code", c, PETSC_ERR_USER_INPUT, "material.hpp: density > 0");
+  ReportCode("density = nan: error code", d, PETSC_ERR_USER_INPUT, "registry.cxx: density finite");
+  EXPECT_EQ(a, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(b, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(c, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(d, PETSC_ERR_USER_INPUT);
 }
 
 TEST(MaterialInput, UnknownOrMissingModel)
@@ -380,10 +388,10 @@ TEST(MaterialInput, UnknownOrMissingModel)
   opt.Material("in_badmodel", "neo_hooke", "1000", "1000", "0.3");
   opt.Material("in_nomodel", "", "1000", "1000", "0.3");
   const PetscErrorCode a = TryCreate("in_badmodel", true), b = TryCreate("in_nomodel", true);
-  Report("unknown -<name>_model neo_hooke: error code", a, 0, "registry.cxx: unknown model");
-  Report("missing -<name>_model: error code", b, 0, "registry.cxx: model required");
-  EXPECT_NE(a, 0);
-  EXPECT_NE(b, 0);
+  ReportCode("unknown -<name>_model neo_hooke: error code", a, PETSC_ERR_USER_INPUT, "registry.cxx: unknown model");
+  ReportCode("missing -<name>_model: error code", b, PETSC_ERR_USER_INPUT, "registry.cxx: model required");
+  EXPECT_EQ(a, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(b, PETSC_ERR_USER_INPUT);
 }
 
 TEST(MaterialInput, BadElasticConstants)
@@ -395,14 +403,14 @@ TEST(MaterialInput, BadElasticConstants)
   opt.Material("in_noE", "neo_hookean", "1000", "", "0.3");
   opt.Material("in_negE", "linear_elastic", "1000", "-3", "0.3");
   const PetscErrorCode a = TryCreate("in_nu05", true), b = TryCreate("in_nu05nh", true), c = TryCreate("in_num1", true), d = TryCreate("in_noE", true), e = TryCreate("in_negE", true);
-  Report("poisson_ratio = 0.5 (linear_elastic): error code", a, 0, "elastic_parameters.cxx: nu in (-1, 0.5)");
-  Report("poisson_ratio = 0.5 (neo_hookean): error code", b, 0, "elastic_parameters.cxx: nu in (-1, 0.5)");
-  Report("poisson_ratio = -1: error code", c, 0, "elastic_parameters.cxx: nu in (-1, 0.5)");
-  Report("missing youngs_modulus: error code", d, 0, "elastic_parameters.cxx: E required");
-  Report("youngs_modulus = -3: error code", e, 0, "elastic_parameters.cxx: E > 0");
-  EXPECT_NE(a, 0);
-  EXPECT_NE(b, 0);
-  EXPECT_NE(c, 0);
-  EXPECT_NE(d, 0);
-  EXPECT_NE(e, 0);
+  ReportCode("poisson_ratio = 0.5 (linear_elastic): error code", a, PETSC_ERR_USER_INPUT, "elastic_parameters.cxx: nu in (-1, 0.5)");
+  ReportCode("poisson_ratio = 0.5 (neo_hookean): error code", b, PETSC_ERR_USER_INPUT, "elastic_parameters.cxx: nu in (-1, 0.5)");
+  ReportCode("poisson_ratio = -1: error code", c, PETSC_ERR_USER_INPUT, "elastic_parameters.cxx: nu in (-1, 0.5)");
+  ReportCode("missing youngs_modulus: error code", d, PETSC_ERR_USER_INPUT, "elastic_parameters.cxx: E required");
+  ReportCode("youngs_modulus = -3: error code", e, PETSC_ERR_USER_INPUT, "elastic_parameters.cxx: E > 0");
+  EXPECT_EQ(a, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(b, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(c, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(d, PETSC_ERR_USER_INPUT);
+  EXPECT_EQ(e, PETSC_ERR_USER_INPUT);
 }
