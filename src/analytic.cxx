@@ -74,7 +74,7 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
   PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05)", "", amplitude, &amplitude, nullptr));
   PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25", "", length, &length, nullptr));
   PetscOptionsEnd();
-  if (type == 0) PetscFunctionReturn(PETSC_SUCCESS);
+  if (type == 0 || sim.materials.empty()) PetscFunctionReturn(PETSC_SUCCESS);
 
   const Material *m = sim.materials[0].get();
   if (has_material) {

@@ -47,6 +47,10 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
   PetscCall(CreateAnalyticSolution(sim));
+  if (sim.help) {
+    PetscCall(PetscLogStagePop());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   // 3. Particles
   PetscCall(CreateSwarm(sim));
   PetscCall(SeedParticles(sim));
@@ -108,10 +112,13 @@ int main(int argc, char **argv)
     Simulation sim;
     PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
     PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+    PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
     PetscCall(RegisterLogging(sim));
     PetscCall(SetUp(sim));
-    PetscCall(View(sim));
-    PetscCall(Run(sim));
+    if (!sim.help) {
+      PetscCall(View(sim));
+      PetscCall(Run(sim));
+    }
   }
   PetscCall(MaterialRegistryDestroy());
   PetscCall(PetscFinalize());

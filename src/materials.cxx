@@ -16,6 +16,7 @@ PetscErrorCode CreateMaterials(Simulation &sim)
   PetscOptionsBegin(sim.comm, "", "Materials", "Materials");
   PetscCall(PetscOptionsStringArray("-materials", "Names of the materials; each is configured with -<name>_model and its parameters", "", names, &n, &set));
   PetscOptionsEnd();
+  if (sim.help && !(set && n > 0)) PetscFunctionReturn(PETSC_SUCCESS); // -help without a scene: list the global options only
   PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,name2,... and -<name>_model for each");
   PetscReal densest = 0;
   for (PetscInt i = 0; i < n; ++i) {

@@ -92,6 +92,7 @@ struct Diagnostics {
 struct Simulation {
   MPI_Comm    comm = PETSC_COMM_WORLD;
   PetscMPIInt rank = 0, size = 1;
+  PetscBool   help = PETSC_FALSE; // -help: read and list every option, then stop
 
   // Run control
   std::string scene = "unnamed";
