@@ -27,7 +27,6 @@ struct MaterialPointFields {
   const PetscInt  *material = nullptr; // material id per particle
   const PetscReal *L        = nullptr; // velocity gradient at t_{n+1/2}, 1/s
   const PetscReal *F        = nullptr; // deformation gradient at t_{n+1} (already updated)
-  const PetscReal *F_old    = nullptr; // deformation gradient at t_n
   PetscReal       *stress   = nullptr; // Cauchy stress, Pa (in: t_n, out: t_{n+1})
   const PetscReal *mass     = nullptr; // kg
   const PetscReal *volume   = nullptr; // current volume, m^3
@@ -47,7 +46,8 @@ public:
   // Sets the model state of newly seeded particles [begin, end).
   virtual PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) { (void)swarm; (void)begin; (void)end; return PETSC_SUCCESS; }
   // Stress update over the particles with material == id: sigma_{n+1} from sigma_n, L, F, dt.
-  // Also writes the wave speed and adds the stress work 0.5 (sigma_n + sigma_{n+1}) : D V dt.
+  // Also writes the wave speed and adds the stress work 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt,
+  // V_mid = V_{n+1} (1 - tr(D) dt / 2) (second order in dt; see StressWork).
   virtual PetscErrorCode UpdateStress(const MaterialPointFields &f, PetscInt id, PetscReal dt) = 0;
   // Wave speed of the particles at their current state (used before the first stress update).
   virtual PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) = 0;
@@ -62,6 +62,17 @@ public:
   std::string model_;        // registered model name
   PetscReal   density_ = -1; // reference mass density, kg/m^3
 };
+
+// Work of the stress over one step, 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt, with the mid-step
+// volume V_mid = V_{n+1} (1 - tr(D) dt / 2). Arrays are row-major 3x3.
+inline PetscReal StressWork(const PetscReal sigma_old[], const PetscReal sigma_new[], const PetscReal L[], PetscReal volume, PetscReal dt)
+{
+  PetscReal work = 0;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) work += 0.5 * (sigma_old[3 * a + b] + sigma_new[3 * a + b]) * 0.5 * (L[3 * a + b] + L[3 * b + a]);
+  const PetscReal trace_D = L[0] + L[4] + L[8];
+  return work * volume * (1.0 - 0.5 * trace_D * dt) * dt;
+}
 
 using MaterialCreateFn = PetscErrorCode (*)(Material **);
 

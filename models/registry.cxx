@@ -2,6 +2,7 @@
 #include "material.hpp"
 #include "../src/util.hpp"
 #include <cmath>
+#include <memory>
 
 namespace burst {
 
@@ -56,13 +57,16 @@ PetscErrorCode MaterialCreate(MPI_Comm comm, const char name[], Material **mater
     PetscCall(FunctionListNames(material_list, names));
     SETERRQ(comm, PETSC_ERR_USER_INPUT, "Unknown material model '%s' for -%smodel; valid choices: %s", model, prefix.c_str(), names.c_str());
   }
-  PetscCall(create(material));
-  (*material)->name_  = name;
-  (*material)->model_ = model;
+  Material *created = nullptr;
+  PetscCall(create(&created));
+  std::unique_ptr<Material> owner(created); // freed if reading the parameters fails
+  owner->name_  = name;
+  owner->model_ = model;
   PetscOptionsBegin(comm, prefix.c_str(), "Material parameters", "Material");
-  PetscCall(MaterialReadDensity(PetscOptionsObject, **material));
-  PetscCall((*material)->SetFromOptions(PetscOptionsObject));
+  PetscCall(MaterialReadDensity(PetscOptionsObject, *owner));
+  PetscCall(owner->SetFromOptions(PetscOptionsObject));
   PetscOptionsEnd();
+  *material = owner.release();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

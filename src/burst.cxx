@@ -31,6 +31,7 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
   PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));
   PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.ev_monitor));
+  PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.ev_loads));
   PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.ev_output));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -132,11 +132,10 @@ struct Simulation {
   PetscInt64 particle_steps = 0;  // global sum over steps of the particle count
   PetscLogDouble wall_start = 0, wall_stepping = 0;
   Diagnostics diag;
-  std::vector<PetscReal> F_old; // scratch: deformation gradients at t_n (grown, never shrunk)
 
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
-  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor;
+  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads;
 
   ~Simulation();
 };
@@ -161,9 +160,9 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what);
 PetscErrorCode GridUpdate(Simulation &sim);
 PetscErrorCode GridVelocityFromMomentum(Simulation &sim);
 
-struct G2PRequest { PetscBool velocity, position, velocity_gradient; };
+// kinematics: L = grad v_new, then F <- (I + L dt) F (or exp(L dt) F) and V = V0 det F, fused in one pass.
+struct G2PRequest { PetscBool velocity, position, kinematics; };
 PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what);
-PetscErrorCode UpdateDeformation(Simulation &sim);
 PetscErrorCode UpdateStress(Simulation &sim);
 PetscErrorCode CheckParticleState(Simulation &sim, const char phase[]);
 PetscErrorCode MigrateParticles(Simulation &sim);

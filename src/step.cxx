@@ -1,10 +1,10 @@
 // One explicit MPM time step: the ordered list of phases.
 //
 //   USL  (update stress last, the default; Uintah's order, Wallstedt & Guilkey 2008):
-//        P2G(m, mv, f) -> grid update + BCs -> G2P(v, x, L) -> F, stress -> migrate
+//        P2G(m, mv, f) -> grid update + BCs -> G2P(v, x, L, F) -> stress -> migrate
 //   MUSL (modified USL, Sulsky et al. 1995): after the velocity G2P, momentum goes back to the grid
 //        and the position and L come from that remapped velocity.
-//   USF  (update stress first): P2G(m, mv) -> grid velocity -> G2P(L) -> F, stress -> P2G(f) ->
+//   USF  (update stress first): P2G(m, mv) -> grid velocity -> G2P(L, F) -> stress -> P2G(f) ->
 //        grid update -> G2P(v, x)
 //
 // Every phase is a named function with its own PetscLogEvent; a coupled solver (ICE) interleaves
@@ -23,7 +23,6 @@ PetscErrorCode TakeStep(Simulation &sim)
     PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
     PetscCall(GridUpdate(sim));
     PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateDeformation(sim));
     PetscCall(UpdateStress(sim));
     break;
   case StepScheme::MUSL:
@@ -33,14 +32,12 @@ PetscErrorCode TakeStep(Simulation &sim)
     PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
     PetscCall(GridVelocityFromMomentum(sim));
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateDeformation(sim));
     PetscCall(UpdateStress(sim));
     break;
   case StepScheme::USF:
     PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
     PetscCall(GridVelocityFromMomentum(sim));
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-    PetscCall(UpdateDeformation(sim));
     PetscCall(UpdateStress(sim));
     PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
     PetscCall(GridUpdate(sim));

@@ -26,10 +26,8 @@ public:
       const Mat3      D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
       const Mat3      sigma_old = sigma;
       sigma += dt * (lambda * D.trace() * I + 2 * mu * D + W * sigma_old - sigma_old * W);
-      const PetscReal J_new = Mat3CMap(f.F + 9 * p).determinant(), J_old = Mat3CMap(f.F_old + 9 * p).determinant();
-      const PetscReal volume_mid = 0.5 * f.volume[p] * (1.0 + J_old / J_new);
-      f.internal_energy[p] += 0.5 * ((sigma_old + sigma).cwiseProduct(D)).sum() * volume_mid * dt;
-      f.wave_speed[p] = std::sqrt(modulus * J_new / density_);
+      f.internal_energy[p] += StressWork(sigma_old.data(), sigma.data(), f.L + 9 * p, f.volume[p], dt);
+      f.wave_speed[p] = std::sqrt(modulus * f.volume[p] / f.mass[p]); // current density m/V
     }
     return PETSC_SUCCESS;
   }
@@ -38,7 +36,7 @@ public:
   {
     const PetscReal modulus = elastic.lame_lambda + 2 * elastic.shear_modulus;
     for (PetscInt p = 0; p < f.n; ++p)
-      if (f.material[p] == id) f.wave_speed[p] = std::sqrt(modulus * Mat3CMap(f.F + 9 * p).determinant() / density_);
+      if (f.material[p] == id) f.wave_speed[p] = std::sqrt(modulus * f.volume[p] / f.mass[p]);
     return PETSC_SUCCESS;
   }
 

@@ -31,12 +31,11 @@ public:
       if (f.material[p] != id) continue;
       Mat3CMap        F(f.F + 9 * p), L(f.L + 9 * p);
       Mat3Map         sigma(f.stress + 9 * p);
-      const PetscReal J = F.determinant(), J_old = Mat3CMap(f.F_old + 9 * p).determinant();
+      const PetscReal J         = F.determinant();
       const Mat3      sigma_old = sigma;
       sigma                     = (lambda * std::log(J) / J) * I + (mu / J) * (F * F.transpose() - I);
-      const Mat3      D          = 0.5 * (L + L.transpose());
-      const PetscReal volume_mid = 0.5 * f.volume[p] * (1.0 + J_old / J);
-      f.internal_energy[p] += 0.5 * ((sigma_old + sigma).cwiseProduct(D)).sum() * volume_mid * dt;
+      (void)L;
+      f.internal_energy[p] += StressWork(sigma_old.data(), sigma.data(), f.L + 9 * p, f.volume[p], dt);
       f.wave_speed[p] = WaveSpeed(J);
     }
     return PETSC_SUCCESS;

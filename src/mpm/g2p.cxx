@@ -1,9 +1,11 @@
 // Grid to particles from the ghosted [v_old, v_new] nodal velocities:
 //   velocity           v_p <- a (v_p + sum N (v_new - v_old)) + (1 - a) sum N v_new   (a = FLIP fraction)
 //   position           x_p <- x_p + dt sum N v_new
-//   velocity_gradient  L_p = sum v_new (x) grad N
+//   kinematics         L_p = sum v_new (x) grad N; F_p <- (I + L dt) F_p (or exp(L dt) F_p); V_p = V0 det F
+//                      (fused here so F, L and the volumes are streamed once per step)
 // The work of the external forces, f_ext . (v_p^n + v_p^{n+1})/2 dt, is accumulated here.
 #include "grid_index.hpp"
+#include "expm.hpp"
 
 namespace burst {
 
@@ -20,8 +22,9 @@ struct G2PKernel {
     const LocalNodeIndex index(g);
     const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
     PetscInt             n;
-    PetscReal           *x, *v, *L;
-    const PetscReal     *hw, *F, *fext;
+    PetscReal           *x, *v, *L, *F, *vol;
+    const PetscReal     *hw, *fext, *vol0;
+    const bool           exponential = sim.f_update == FUpdate::Exponential;
     PetscReal            work = 0;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
@@ -31,6 +34,8 @@ struct G2PKernel {
     PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
     PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
     PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
+    PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -53,14 +58,20 @@ struct G2PKernel {
       }
       if (what.position)
         for (int a = 0; a < DIM; ++a) x[DIM * p + a] += dt * vnew[a];
-      if (what.velocity_gradient) {
+      if (what.kinematics) {
         PetscReal *Lp = L + 9 * p;
         for (int a = 0; a < 9; ++a) Lp[a] = 0;
         for (int a = 0; a < DIM; ++a)
           for (int b = 0; b < DIM; ++b) Lp[3 * a + b] = grad[a][b];
+        Mat3Map    Fp(F + 9 * p);
+        const Mat3 increment = exponential ? Expm(Mat3CMap(Lp) * dt) : Mat3(Mat3::Identity() + Mat3CMap(Lp) * dt);
+        Fp                   = increment * Mat3(Fp);
+        vol[p]               = vol0[p] * Fp.determinant();
       }
     }
     sim.diag.external_work += work;
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
     PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
     PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
     PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));

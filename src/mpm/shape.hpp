@@ -18,6 +18,7 @@
 // weights stay non-negative (w_1 >= w_{-1} whenever node -1 is in the support). A particle on a wall
 // node maps fully onto it.
 #pragma once
+#include "../petsc_compat.hpp"
 #include <cmath>
 #include <petscsys.h>
 
@@ -44,7 +45,8 @@ inline PetscInt ClampNode(PetscInt i, PetscInt nodes) { return i < 0 ? 0 : (i >=
 inline void LinearWeights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscReal w[], PetscReal dw[])
 {
   const PetscReal xi = (x - a.origin) / a.h;
-  PetscInt        i0 = (PetscInt)std::floor(xi);
+  // a particle exactly on the upper wall belongs to the last cell (both nodes distinct)
+  PetscInt        i0 = PetscMin((PetscInt)std::floor(xi), a.nodes - 2);
   const PetscReal r  = xi - (PetscReal)i0;
   idx[0]             = ClampNode(i0, a.nodes);
   idx[1]             = ClampNode(i0 + 1, a.nodes);

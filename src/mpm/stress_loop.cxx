@@ -1,56 +1,10 @@
-// Kinematics and the constitutive call: F_{n+1} = (I + L dt) F_n (or exp(L dt) F_n), V = V0 det F,
-// then each material updates the stress of its own particles in one flat loop (models/).
+// The constitutive call: each material updates the stress of its own particles in one flat loop
+// (models/). F and V were updated with L in the G2P pass (g2p.cxx).
 #include "../simulation.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
 namespace burst {
-
-// exp(A) by scaling and squaring with a degree-8 Taylor polynomial; A = L dt is small in practice.
-static inline Mat3 Expm(const Mat3 &A)
-{
-  const PetscReal norm = A.cwiseAbs().rowwise().sum().maxCoeff();
-  int             s    = norm > 0.5 ? (int)std::ceil(std::log2(norm / 0.5)) : 0;
-  const Mat3      B    = A / std::ldexp(1.0, s);
-  Mat3            term = Mat3::Identity(), result = Mat3::Identity();
-  for (int k = 1; k <= 8; ++k) {
-    term = term * B / (PetscReal)k;
-    result += term;
-  }
-  for (int k = 0; k < s; ++k) result = result * result;
-  return result;
-}
-
-PetscErrorCode UpdateDeformation(Simulation &sim)
-{
-  PetscInt         n;
-  PetscReal       *F, *vol;
-  const PetscReal *L, *vol0;
-  const PetscReal  dt = sim.dt;
-  PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_stress, 0, 0, 0, 0));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  if ((PetscInt)sim.F_old.size() < 9 * n) sim.F_old.resize(9 * n + 9 * 1024);
-  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-  const bool exponential = sim.f_update == FUpdate::Exponential;
-  for (PetscInt p = 0; p < n; ++p) {
-    Mat3Map  Fp(F + 9 * p);
-    Mat3CMap Lp(L + 9 * p);
-    Mat3Map(sim.F_old.data() + 9 * p) = Fp;
-    const Mat3 increment              = exponential ? Expm(Lp * dt) : Mat3(Mat3::Identity() + Lp * dt);
-    Fp                                = increment * Mat3(Fp);
-    vol[p]                            = vol0[p] * Fp.determinant();
-  }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(PetscLogEventEnd(sim.ev_stress, 0, 0, 0, 0));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 
 // Gathers the field views a material needs; must be matched by RestorePointFields.
 static PetscErrorCode GetPointFields(Simulation &sim, MaterialPointFields &f)
@@ -66,8 +20,6 @@ static PetscErrorCode GetPointFields(Simulation &sim, MaterialPointFields &f)
   PetscCall(DMSwarmGetField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&f.temperature));
   PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&f.wave_speed));
   PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&f.internal_energy));
-  if ((PetscInt)sim.F_old.size() < 9 * f.n) sim.F_old.resize(9 * f.n + 9 * 1024);
-  f.F_old = sim.F_old.data();
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -105,8 +57,6 @@ PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim)
   MaterialPointFields f;
   PetscFunctionBeginUser;
   PetscCall(GetPointFields(sim, f));
-  for (PetscInt p = 0; p < f.n; ++p)
-    for (int a = 0; a < 9; ++a) sim.F_old[9 * p + a] = f.F[9 * p + a];
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
     PetscCall(sim.materials[id]->UpdateStress(f, id, 0.0));
     PetscCall(sim.materials[id]->ComputeWaveSpeed(f, id));

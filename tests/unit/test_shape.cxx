@@ -13,6 +13,8 @@
 //                           with a uniform particle characteristic function), quadratic B-spline (Steffen et al. 2008)
 //   limits                  GIMP with lp -> 0 is the linear hat; cpGIMP is uGIMP with lp = lp0 |F_dd| clamped to h/2
 //   consistency             dN equals the finite-difference derivative of N
+//   walls                   outside nodes extrapolated (shape.hpp header): linear fields exact up to and on
+//                           the walls for GIMP and the B-spline, weights >= 0, hand values at x = 0.1 h
 // shape.hpp uses PETSC_SUCCESS (DispatchShape) but includes only <petscsys.h>; on PETSc < 3.19 that
 // macro comes from petsc_compat.hpp, so it is included first (reported: shape.hpp is not self-contained).
 #include "petsc_compat.hpp"
@@ -106,8 +108,8 @@ void RandomPositionAnywhere(std::mt19937_64 &rng, Particle<DIM> &p)
 
 // Interval of positions (offsets from the origin) whose whole support lies inside the domain, so a
 // linear field must be reproduced exactly whatever the wall treatment:
-//   linear    [0, L): the hat of the two cell nodes. x = L itself is excluded: there the lower node
-//             is the wall node and the upper one is clamped onto it (see the DISABLED_ test below).
+//   linear    [0, L]: the hat of the two cell nodes (x = L belongs to the last cell; see
+//             LinearGradientAtUpperWall).
 //   GIMP      [lp, L - lp]: the particle domain [x - lp, x + lp] inside the grid.
 //   B-spline  [h/2, L - h/2]: with wall nodes simply folded (clamped), the quadratic B-spline does NOT
 //             reproduce a linear field in the half cell next to a wall, by design: folding moves the
@@ -577,9 +579,9 @@ TEST(Shape, WallHandValues)
 // A particle exactly on the upper wall (x = L) with the linear hat: LinearWeights1D takes cell M-1,
 // whose upper node M is folded onto M-1, so grad N = (-1/h + 1/h) = 0 and a linear field's gradient
 // is lost (at x = 0 the inside cell is used and the gradient is right). With uGIMP/B-spline a particle
-// at x = L keeps the right gradient (LinearReproductionToWall_* covers x = L exactly). Disabled because it fails on
-// the current code; it is reported as a finding. Run with --gtest_also_run_disabled_tests.
-TEST(Shape, DISABLED_LinearGradientAtUpperWall)
+// at x = L keeps the right gradient (LinearReproductionToWall_* covers x = L exactly). It found a bug:
+// both nodes used to be clamped onto the wall node; shape.hpp now assigns x = L to the last cell.
+TEST(Shape, LinearGradientAtUpperWall)
 {
   const Axis a = {0.0, 0.5, 5};
   PetscInt   idx[2];
