@@ -1,4 +1,5 @@
 #include "analytic.hpp"
+#include "swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
 
@@ -116,12 +117,13 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
   PetscFunctionBeginUser;
   if (!sim.analytic) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::F, &F));
+  PetscCall(fields.Get(field::volume, &vol));
+  PetscCall(fields.Get(field::volume0, &vol0));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal X[3] = {0, 0, 0}, u[3], vel[3];
     for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
@@ -136,12 +138,7 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
     const PetscReal  J = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) + f[2] * (f[3] * f[7] - f[4] * f[6]);
     vol[p]             = vol0[p] * J;
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -152,9 +149,10 @@ PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscR
   PetscReal  local[3] = {0, 0, 0}, global[3]; // sum m e^2, sum m, max e
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(field::mass, &mass));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal X[3] = {0, 0, 0}, u[3], e2 = 0;
     for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
@@ -167,9 +165,7 @@ PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscR
     local[1] += mass[p];
     local[2] = PetscMax(local[2], std::sqrt(e2));
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
   PetscCallMPI(MPI_Allreduce(&local[2], &global[2], 1, MPIU_REAL, MPI_MAX, sim.comm));
   *rms = std::sqrt(global[0] / global[1]);

@@ -4,6 +4,7 @@
 // the centres of equal sub-cells. A particle takes the volume of its sub-cell and mass = density x
 // volume. Geometries are filled in the order listed; a point already claimed is not seeded twice.
 #include "geometry.hpp"
+#include "swarm_access.hpp"
 #include "util.hpp"
 #include "analytic.hpp"
 #include <cmath>
@@ -219,25 +220,26 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscReal *x, *v, *mass, *vol, *vol0, *X0, *hw, *F, *sigma, *L, *T, *c, *e, *fext, *area;
   PetscInt  *mat, *curve, *cell;
   PetscInt64 *pid;
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-  PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-  PetscCall(DMSwarmGetField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&T));
-  PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
-  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
-  PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-  PetscCall(DMSwarmGetField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area));
-  PetscCall(DMSwarmGetField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
-  PetscCall(DMSwarmGetField(sim.swarm, field::material, nullptr, nullptr, (void **)&mat));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::mass, &mass));
+  PetscCall(fields.Get(field::volume, &vol));
+  PetscCall(fields.Get(field::volume0, &vol0));
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(field::half_width0, &hw));
+  PetscCall(fields.Get(field::F, &F));
+  PetscCall(fields.Get(field::stress, &sigma));
+  PetscCall(fields.Get(field::L, &L));
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::wave_speed, &c));
+  PetscCall(fields.Get(field::internal_energy, &e));
+  PetscCall(fields.Get(field::external_force, &fext));
+  PetscCall(fields.Get(field::traction_area0, &area));
+  PetscCall(fields.Get(field::load_curve, &curve));
+  PetscCall(fields.Get(field::material, &mat));
   for (PetscInt p = 0; p < n; ++p) {
     const Geometry &geo = *sim.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
@@ -280,25 +282,7 @@ PetscErrorCode SeedParticles(Simulation &sim)
       }
     }
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::material, nullptr, nullptr, (void **)&mat));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&T));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   for (auto &m : sim.materials) PetscCall(m->InitializeState(sim.swarm, 0, n));
   PetscCall(PetscInfo(sim.swarm, "Seeded %" PetscInt_FMT " particles on this rank, %" PetscInt64_FMT " in all\n", n, sim.total_particles));
   PetscFunctionReturn(PETSC_SUCCESS);

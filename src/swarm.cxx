@@ -2,6 +2,7 @@
 // ownership ranges (petsc.md 3, 4.1-4.2). BASIC migration sends each point straight to its owner at
 // any distance, so nothing is lost silently; burst still compares the global count before and after.
 #include "simulation.hpp"
+#include "swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
 
@@ -66,9 +67,10 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
   PetscInt   *rank, *cell;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(DMSwarmField_rank, &rank));
+  PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
   for (PetscInt p = 0; p < n; ++p) {
     PetscInt slot[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     bool     inside  = true;
@@ -90,9 +92,7 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
     rank[p] = slot[0] + g.procs[0] * (slot[1] + g.procs[1] * slot[2]);
     cell[p] = c[0] + g.cells[0] * (c[1] + g.cells[1] * c[2]);
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_cellid, nullptr, nullptr, (void **)&cell));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   *num_outside = outside;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -106,10 +106,11 @@ static PetscErrorCode RemoveOutsideParticles(Simulation &sim)
   PetscReal *mass, *v, *energy;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&energy));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmField_rank, &rank));
+  PetscCall(fields.Get(field::mass, &mass));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::internal_energy, &energy));
   std::vector<PetscInt> survivors;
   survivors.reserve(n);
   for (PetscInt p = 0; p < n; ++p) {
@@ -123,10 +124,7 @@ static PetscErrorCode RemoveOutsideParticles(Simulation &sim)
     sim.diag.removed_mass += mass[p];
     sim.diag.removed_particles++;
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&energy));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&mass));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+  PetscCall(fields.RestoreAll());
   keep = (PetscInt)survivors.size();
   if (keep == n) PetscFunctionReturn(PETSC_SUCCESS);
   for (PetscInt k = 0; k < keep; ++k)
@@ -150,15 +148,15 @@ PetscErrorCode MigrateParticles(Simulation &sim)
       PetscReal *x;
       PetscInt  *rank;
       PetscCall(DMSwarmGetLocalSize(sim.swarm, &np));
-      PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-      PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
+      SwarmAccess fields(sim.swarm);
+      PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+      PetscCall(fields.Get(DMSwarmField_rank, &rank));
       for (PetscInt p = 0; p < np; ++p)
         if (rank[p] < 0) {
           PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", sim.rank, sim.step, p, (double)x[p * sim.grid.dim], (double)x[p * sim.grid.dim + 1], sim.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
           break;
         }
-      PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_rank, nullptr, nullptr, (void **)&rank));
-      PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+      PetscCall(fields.RestoreAll());
       SETERRQ(sim.comm, PETSC_ERR_USER, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " particle(s) left the domain (-mpm_outside_domain error); enlarge -grid_lower/-grid_upper or use -mpm_outside_domain remove", sim.step, global_outside);
     }
     removed_before = sim.diag.removed_particles;

@@ -4,6 +4,7 @@
 // initial value for a conservative scheme; the relative balance error divides the drift by the
 // largest energy seen (kinetic + internal + |external work|).
 #include "../simulation.hpp"
+#include "../swarm_access.hpp"
 #include "../analytic.hpp"
 #include <cstdio>
 #include <fstream>
@@ -24,9 +25,10 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   PetscReal        local[8] = {0, 0, 0, 0, 0, 0, 0, 0}, global[8];
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::mass, &m));
+  PetscCall(fields.Get(field::internal_energy, &e));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal v2 = 0;
     for (PetscInt d = 0; d < dim; ++d) {
@@ -39,9 +41,7 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   }
   local[2] = sim.diag.external_work;
   local[7] = sim.diag.removed_energy;
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&e));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 8, MPIU_REAL, MPI_SUM, sim.comm));
   r.kinetic       = global[0];
   r.internal      = global[1];
@@ -64,9 +64,10 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[6])
   PetscReal         local[7] = {0, 0, 0, 0, 0, 0, 0}, global[7];
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
   for (PetscInt p = 0; p < n; ++p)
     if (pid[p] == sim.track_pid) {
       for (PetscInt d = 0; d < dim; ++d) {
@@ -75,9 +76,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[6])
       }
       local[6] = 1;
     }
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 7, MPIU_REAL, MPI_SUM, sim.comm));
   PetscCheck(global[6] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids run from 0 to %" PetscInt64_FMT ")", sim.track_pid, sim.next_pid - 1);
   for (int k = 0; k < 6; ++k) xu[k] = global[k];

@@ -5,6 +5,7 @@
 //                      (fused here so F, L and the volumes are streamed once per step)
 // The work of the external forces, f_ext . (v_p^n + v_p^{n+1})/2 dt, is accumulated here.
 #include "grid_index.hpp"
+#include "../swarm_access.hpp"
 #include "expm.hpp"
 
 namespace burst {
@@ -28,14 +29,15 @@ struct G2PKernel {
     PetscReal            work = 0;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-    PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-    PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-    PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-    PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-    PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-    PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-    PetscCall(DMSwarmGetField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::velocity, &v));
+    PetscCall(fields.Get(field::L, &L));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(field::external_force, &fext));
+    PetscCall(fields.Get(field::volume, &vol));
+    PetscCall(fields.Get(field::volume0, &vol0));
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -70,14 +72,7 @@ struct G2PKernel {
       }
     }
     sim.diag.external_work += work;
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume0, nullptr, nullptr, (void **)&vol0));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&L));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-    PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };

@@ -1,6 +1,7 @@
 // Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
 // into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
 #include "grid_index.hpp"
+#include "../swarm_access.hpp"
 
 namespace burst {
 
@@ -19,14 +20,15 @@ struct P2GKernel {
     const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-    PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-    PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-    PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-    PetscCall(DMSwarmGetField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-    PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-    PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-    PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::velocity, &v));
+    PetscCall(fields.Get(field::mass, &m));
+    PetscCall(fields.Get(field::volume, &vol));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(field::stress, &sigma));
+    PetscCall(fields.Get(field::external_force, &fext));
     Stencil<DIM, S> st;
     const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
     for (PetscInt p = 0; p < n; ++p) {
@@ -46,14 +48,7 @@ struct P2GKernel {
           }
       });
     }
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::half_width0, nullptr, nullptr, (void **)&hw));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-    PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-    PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+    PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };

@@ -1,51 +1,38 @@
 // The constitutive call: each material updates the stress of its own particles in one flat loop
 // (models/). F and V were updated with L in the G2P pass (g2p.cxx).
 #include "../simulation.hpp"
+#include "../swarm_access.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
 namespace burst {
 
-// Gathers the field views a material needs; must be matched by RestorePointFields.
-static PetscErrorCode GetPointFields(Simulation &sim, MaterialPointFields &f)
+// Gathers the field views a material needs into `f`; `fields` restores them.
+static PetscErrorCode GetPointFields(SwarmAccess &fields, DM swarm, MaterialPointFields &f)
 {
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &f.n));
-  PetscCall(DMSwarmGetField(sim.swarm, field::material, nullptr, nullptr, (void **)&f.material));
-  PetscCall(DMSwarmGetField(sim.swarm, field::L, nullptr, nullptr, (void **)&f.L));
-  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&f.F));
-  PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&f.stress));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&f.mass));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&f.volume));
-  PetscCall(DMSwarmGetField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&f.temperature));
-  PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&f.wave_speed));
-  PetscCall(DMSwarmGetField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&f.internal_energy));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-static PetscErrorCode RestorePointFields(Simulation &sim, MaterialPointFields &f)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::internal_energy, nullptr, nullptr, (void **)&f.internal_energy));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&f.wave_speed));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::temperature, nullptr, nullptr, (void **)&f.temperature));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&f.volume));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&f.mass));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&f.stress));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&f.F));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::L, nullptr, nullptr, (void **)&f.L));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::material, nullptr, nullptr, (void **)&f.material));
+  PetscCall(DMSwarmGetLocalSize(swarm, &f.n));
+  PetscCall(fields.Get(field::material, &f.material));
+  PetscCall(fields.Get(field::L, &f.L));
+  PetscCall(fields.Get(field::F, &f.F));
+  PetscCall(fields.Get(field::stress, &f.stress));
+  PetscCall(fields.Get(field::mass, &f.mass));
+  PetscCall(fields.Get(field::volume, &f.volume));
+  PetscCall(fields.Get(field::temperature, &f.temperature));
+  PetscCall(fields.Get(field::wave_speed, &f.wave_speed));
+  PetscCall(fields.Get(field::internal_energy, &f.internal_energy));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode UpdateStress(Simulation &sim)
 {
   MaterialPointFields f;
+  SwarmAccess         fields(sim.swarm);
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_stress, 0, 0, 0, 0));
-  PetscCall(GetPointFields(sim, f));
+  PetscCall(GetPointFields(fields, sim.swarm, f));
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) PetscCall(sim.materials[id]->UpdateStress(f, id, sim.dt));
-  PetscCall(RestorePointFields(sim, f));
+  PetscCall(fields.RestoreAll());
   PetscCall(PetscLogEventEnd(sim.ev_stress, 0, 0, 0, 0));
   PetscCall(CheckParticleState(sim, "stress update"));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -55,13 +42,14 @@ PetscErrorCode UpdateStress(Simulation &sim)
 PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim)
 {
   MaterialPointFields f;
+  SwarmAccess         fields(sim.swarm);
   PetscFunctionBeginUser;
-  PetscCall(GetPointFields(sim, f));
+  PetscCall(GetPointFields(fields, sim.swarm, f));
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
     PetscCall(sim.materials[id]->UpdateStress(f, id, 0.0));
     PetscCall(sim.materials[id]->ComputeWaveSpeed(f, id));
   }
-  PetscCall(RestorePointFields(sim, f));
+  PetscCall(fields.RestoreAll());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -75,12 +63,13 @@ PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
   PetscInt64       bad_pid = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-  PetscCall(DMSwarmGetField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmGetField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::stress, &sigma));
+  PetscCall(fields.Get(field::volume, &vol));
+  PetscCall(fields.Get(field::mass, &m));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
   for (PetscInt p = 0; p < n && bad < 0; ++p) {
     PetscReal sum = 0;
     for (PetscInt a = 0; a < dim; ++a) sum += x[dim * p + a] + v[dim * p + a];
@@ -94,12 +83,7 @@ PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
     }
   }
   if (bad >= 0) bad_pid = pid[bad];
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmField_pid, nullptr, nullptr, (void **)&pid));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::volume, nullptr, nullptr, (void **)&vol));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::stress, nullptr, nullptr, (void **)&sigma));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, (void **)&x));
+  PetscCall(fields.RestoreAll());
   PetscMPIInt local_bad = bad >= 0, any_bad = 0;
   PetscCallMPI(MPI_Allreduce(&local_bad, &any_bad, 1, MPI_INT, MPI_MAX, sim.comm));
   if (local_bad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] after %s, step %" PetscInt_FMT ", t = %g s: particle id %" PetscInt64_FMT ": %s\n", sim.rank, phase, sim.step, (double)sim.time, bad_pid, what));

@@ -1,5 +1,6 @@
 // Time step and external forces.
 #include "../simulation.hpp"
+#include "../swarm_access.hpp"
 #include "../analytic.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
@@ -16,12 +17,12 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_dt, 0, 0, 0, 0));
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
-  PetscCall(DMSwarmGetField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::wave_speed, &c));
   for (PetscInt p = 0; p < n; ++p)
     for (PetscInt d = 0; d < dim; ++d) local = PetscMin(local, sim.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::wave_speed, nullptr, nullptr, (void **)&c));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::velocity, nullptr, nullptr, (void **)&v));
+  PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, sim.comm));
   sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
   PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
@@ -49,12 +50,13 @@ PetscErrorCode ComputeExternalForces(Simulation &sim)
   if (!body && !gravity && sim.load_curves.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(sim.ev_loads, 0, 0, 0, 0));
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(DMSwarmGetField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
-  PetscCall(DMSwarmGetField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmGetField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmGetField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmGetField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::external_force, &fext));
+  PetscCall(fields.Get(field::mass, &m));
+  PetscCall(fields.Get(field::traction_area0, &area0));
+  PetscCall(fields.Get(field::F, &F));
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(field::load_curve, &curve));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal b[3] = {0, 0, 0};
     if (body) {
@@ -71,12 +73,7 @@ PetscErrorCode ComputeExternalForces(Simulation &sim)
       for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] -= pressure[curve[p]] * nda[d]; // pressure pushes against the outward normal
     }
   }
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::load_curve, nullptr, nullptr, (void **)&curve));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::position0, nullptr, nullptr, (void **)&X0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::F, nullptr, nullptr, (void **)&F));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::traction_area0, nullptr, nullptr, (void **)&area0));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::mass, nullptr, nullptr, (void **)&m));
-  PetscCall(DMSwarmRestoreField(sim.swarm, field::external_force, nullptr, nullptr, (void **)&fext));
+  PetscCall(fields.RestoreAll());
   PetscCall(PetscLogEventEnd(sim.ev_loads, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

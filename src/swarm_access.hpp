@@ -1,0 +1,55 @@
+// Access to several DMSwarm fields at once, restored together with one call.
+//
+//   SwarmAccess fields(sim.swarm);
+//   PetscCall(fields.Get(field::mass, &mass));
+//   PetscCall(fields.Get(field::velocity, &v));
+//   ... flat loops over the arrays ...
+//   PetscCall(fields.RestoreAll());
+//
+// Every field must be restored before the swarm changes size (migration, removal; petsc.md 3); the
+// destructor restores whatever an error path left held.
+#pragma once
+#include "petsc_compat.hpp"
+#include <petscdmswarm.h>
+#include <array>
+#include <utility>
+
+namespace burst {
+
+class SwarmAccess {
+public:
+  explicit SwarmAccess(DM swarm) : swarm_(swarm) {}
+  SwarmAccess(const SwarmAccess &)            = delete;
+  SwarmAccess &operator=(const SwarmAccess &) = delete;
+  ~SwarmAccess()
+  {
+    for (int k = count_ - 1; k >= 0; --k) (void)DMSwarmRestoreField(swarm_, held_[k].first, nullptr, nullptr, &held_[k].second);
+  }
+
+  template <class T>
+  PetscErrorCode Get(const char name[], T **data)
+  {
+    void *ptr = nullptr;
+    *data     = nullptr;
+    PetscFunctionBeginUser;
+    PetscCheck(count_ < (int)held_.size(), PETSC_COMM_SELF, PETSC_ERR_PLIB, "SwarmAccess holds at most %d fields", (int)held_.size());
+    PetscCall(DMSwarmGetField(swarm_, name, nullptr, nullptr, &ptr));
+    held_[count_++] = {name, ptr};
+    *data           = static_cast<T *>(ptr);
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode RestoreAll()
+  {
+    PetscFunctionBeginUser;
+    for (; count_ > 0; --count_) PetscCall(DMSwarmRestoreField(swarm_, held_[count_ - 1].first, nullptr, nullptr, &held_[count_ - 1].second));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+private:
+  DM                                           swarm_;
+  std::array<std::pair<const char *, void *>, 48> held_{};
+  int                                          count_ = 0;
+};
+
+} // namespace burst
