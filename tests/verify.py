@@ -109,13 +109,15 @@ def convergence(args):
                       "-square_upper", "1,1,1", "-bc_zmin", "symmetry", "-bc_zmax", "symmetry"]
         else:
             extra += ["-grid_cells", f"{n},{n}"]
+        if args.f_update:
+            extra += ["-mpm_F_update", args.f_update]
         if args.dt:
             extra += ["-mpm_dt", args.dt]
         with tempfile.TemporaryDirectory() as out:
             s = run(args.burst, deck, out, extra)
         errors.append(s["displacement_error_rms"])
     orders = [math.log(errors[k] / errors[k + 1]) / math.log(cells[k + 1] / cells[k]) for k in range(len(cells) - 1)]
-    print(f"mms_axis_aligned {args.dim}-D {args.shape} {args.scheme}: cells {cells}, rms displacement error "
+    print(f"mms_axis_aligned {args.dim}-D {args.shape} {args.scheme} F update {args.f_update or 'linear'}: cells {cells}, rms displacement error "
           + ", ".join(f"{e:.3e}" for e in errors) + " m; observed order " + ", ".join(f"{o:.2f}" for o in orders))
     failures = []
     if args.min_order is not None:
@@ -245,6 +247,7 @@ def main():
     c.add_argument("--dim", type=int, default=2)
     c.add_argument("--cells", default="8,16,32")
     c.add_argument("--dt", default=None)
+    c.add_argument("--f-update", default=None)
     c.add_argument("--min-order", type=float, default=None)
     c.add_argument("--max-order", type=float, default=None)
     c.add_argument("--max-error", type=float, default=None)
