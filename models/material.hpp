@@ -6,7 +6,7 @@
 // model choices are hoisted out of the particle loop (STYLE.md 2.3).
 //
 // A model that needs per-particle state registers it as DMSwarm fields in RegisterFields and finds
-// it again through MaterialPointFields::extra (by the name it registered), so a new model brings its
+// it again through MaterialPointFields::swarm (by the name it registered), so a new model brings its
 // own state without touching the core.
 //
 // Adding a model: write one file models/<family>/<name>.cxx with a class derived from Material and a
@@ -33,7 +33,8 @@ struct MaterialPointFields {
   PetscReal       *temperature = nullptr; // K
   PetscReal       *wave_speed  = nullptr; // out: longitudinal wave speed, m/s
   PetscReal       *internal_energy = nullptr; // in/out: accumulated stress work, J
-  std::map<std::string, void *> extra;        // model-registered fields by name
+  DM               swarm = nullptr;           // the swarm, for fields a model registered itself
+  PetscReal        time  = 0;                 // t_{n+1}, s
 };
 
 class Material {
@@ -41,6 +42,8 @@ public:
   virtual ~Material() = default;
   // Reads the options under `-<name>_`: density plus the model's own parameters.
   virtual PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) = 0;
+  // Creates what depends on the parameters (sub-models); called after SetFromOptions.
+  virtual PetscErrorCode SetUp(MPI_Comm comm) { (void)comm; return PETSC_SUCCESS; }
   // Registers the model's per-particle state; called before DMSwarmFinalizeFieldRegister.
   virtual PetscErrorCode RegisterFields(DM swarm) { (void)swarm; return PETSC_SUCCESS; }
   // Sets the model state of newly seeded particles [begin, end).
@@ -61,6 +64,7 @@ public:
   std::string name_;         // user's name, also the options prefix
   std::string model_;        // registered model name
   PetscReal   density_ = -1; // reference mass density, kg/m^3
+  PetscInt    id_      = -1; // material id (index in -materials) of its particles
 };
 
 // Work of the stress over one step, 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt, with the mid-step

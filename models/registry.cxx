@@ -8,6 +8,8 @@ namespace burst {
 
 PetscErrorCode LinearElasticCreate(Material **);
 PetscErrorCode NeoHookeanCreate(Material **);
+PetscErrorCode ElasticPlasticCreate(Material **);
+PetscErrorCode SubModelRegistriesDestroy();
 
 static PetscFunctionList material_list  = nullptr;
 static PetscBool         registered_all = PETSC_FALSE;
@@ -26,6 +28,7 @@ PetscErrorCode MaterialRegisterAll()
   registered_all = PETSC_TRUE;
   PetscCall(MaterialRegister("linear_elastic", LinearElasticCreate));
   PetscCall(MaterialRegister("neo_hookean", NeoHookeanCreate));
+  PetscCall(MaterialRegister("elastic_plastic", ElasticPlasticCreate));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -33,6 +36,7 @@ PetscErrorCode MaterialRegistryDestroy()
 {
   PetscFunctionBeginUser;
   PetscCall(PetscFunctionListDestroy(&material_list));
+  PetscCall(SubModelRegistriesDestroy());
   registered_all = PETSC_FALSE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -66,6 +70,7 @@ PetscErrorCode MaterialCreate(MPI_Comm comm, const char name[], Material **mater
   PetscCall(MaterialReadDensity(PetscOptionsObject, *owner));
   PetscCall(owner->SetFromOptions(PetscOptionsObject));
   PetscOptionsEnd();
+  PetscCall(owner->SetUp(comm));
   *material = owner.release();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

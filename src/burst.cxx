@@ -13,8 +13,11 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "simulation.hpp"
 #include "geometry.hpp"
 #include "analytic.hpp"
+#include "util.hpp"
 
 using namespace burst;
+
+static const char *const ModeNames[] = {"mpm", "point"};
 
 static PetscErrorCode RegisterLogging(Simulation &sim)
 {
@@ -114,11 +117,18 @@ int main(int argc, char **argv)
     PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
     PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
     PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
+    int mode = 0;
+    PetscOptionsBegin(sim.comm, "", "burst", "Mode");
+    PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
+    PetscOptionsEnd();
     PetscCall(RegisterLogging(sim));
-    PetscCall(SetUp(sim));
-    if (!sim.help) {
-      PetscCall(View(sim));
-      PetscCall(Run(sim));
+    if (mode == 1) PetscCall(RunPointDriver(sim));
+    else {
+      PetscCall(SetUp(sim));
+      if (!sim.help) {
+        PetscCall(View(sim));
+        PetscCall(Run(sim));
+      }
     }
   }
   PetscCall(MaterialRegistryDestroy());

@@ -23,6 +23,7 @@ PetscErrorCode CreateMaterials(Simulation &sim)
     Material *m;
     for (PetscInt j = 0; j < i; ++j) PetscCheck(std::string(names[i]) != names[j], sim.comm, PETSC_ERR_USER_INPUT, "Option -materials lists '%s' twice", names[i]);
     PetscCall(MaterialCreate(sim.comm, names[i], &m));
+    m->id_ = i;
     sim.materials.emplace_back(m);
     densest = PetscMax(densest, m->Density());
     PetscCall(PetscFree(names[i]));

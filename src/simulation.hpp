@@ -169,6 +169,7 @@ PetscErrorCode MigrateParticles(Simulation &sim);
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
 
 PetscErrorCode TakeStep(Simulation &sim);
+PetscErrorCode RunPointDriver(Simulation &sim);
 
 // Output and diagnostics (src/io/)
 PetscErrorCode OutputSetUp(Simulation &sim);

@@ -12,6 +12,7 @@ static PetscErrorCode GetPointFields(SwarmAccess &fields, DM swarm, MaterialPoin
 {
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(swarm, &f.n));
+  f.swarm = swarm;
   PetscCall(fields.Get(field::material, &f.material));
   PetscCall(fields.Get(field::L, &f.L));
   PetscCall(fields.Get(field::F, &f.F));
@@ -31,6 +32,7 @@ PetscErrorCode UpdateStress(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_stress, 0, 0, 0, 0));
   PetscCall(GetPointFields(fields, sim.swarm, f));
+  f.time = sim.time + sim.dt;
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) PetscCall(sim.materials[id]->UpdateStress(f, id, sim.dt));
   PetscCall(fields.RestoreAll());
   PetscCall(PetscLogEventEnd(sim.ev_stress, 0, 0, 0, 0));
@@ -45,6 +47,7 @@ PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim)
   SwarmAccess         fields(sim.swarm);
   PetscFunctionBeginUser;
   PetscCall(GetPointFields(fields, sim.swarm, f));
+  f.time = sim.time;
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
     PetscCall(sim.materials[id]->UpdateStress(f, id, 0.0));
     PetscCall(sim.materials[id]->ComputeWaveSpeed(f, id));

@@ -1,0 +1,73 @@
+// Johnson-Cook flow stress (paper eq. 10; Johnson & Cook 1983):
+//   sigma_f = [A + B eps_p^n] [1 + C ln(rate*)] [1 - T*^m],  rate* = eps_p_dot / rate0,
+//   T* = (T - T_r) / (T_m - T_r) clamped to [0, 1], T_m from the material's melt model.
+// Rate regularisation (NOTES eq. 10, models.md 2.10): the plastic rate is floored at min_rate
+// (-MAT_flow_stress_min_rate, default 1e-3 /s) before the logarithm, so the rate factor is
+// continuous and, for min_rate > rate0 exp(-1/C), positive. sigma_f = 0 at and above melt.
+#include "flow_stress.hpp"
+#include <cmath>
+
+namespace burst {
+
+class JohnsonCook final : public FlowStressModel<JohnsonCook> {
+public:
+  PetscReal A = 0, B = 0, n = 1, C = 0, m = 1, rate0 = 1, room_temperature = 298;
+
+  inline void Evaluate(const FlowPoint &x, FlowValue &y) const
+  {
+    const PetscReal eps    = x.plastic_strain > 0 ? x.plastic_strain : 0;
+    const PetscReal power  = eps > 0 ? std::pow(eps, n) : 0;
+    const PetscReal strain = A + B * power;
+    const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
+    const PetscReal rate_star = x.plastic_strain_rate / rate0;
+    const PetscReal rate   = 1 + C * std::log(rate_star);
+    const PetscReal d_rate = C / x.plastic_strain_rate;
+    PetscReal       homologous = (x.temperature - room_temperature) / (x.melt_temperature - room_temperature);
+    PetscReal       thermal = 1, d_thermal = 0;
+    if (homologous >= 1) thermal = 0;
+    else if (homologous > 0) {
+      const PetscReal tm = std::pow(homologous, m);
+      thermal            = 1 - tm;
+      d_thermal          = -m * tm / homologous / (x.melt_temperature - room_temperature);
+    }
+    y.sigma         = strain * rate * thermal;
+    y.d_strain      = d_strain * rate * thermal;
+    y.d_rate        = strain * d_rate * thermal;
+    y.d_temperature = strain * rate * d_thermal;
+  }
+
+  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const MaterialConstants &material) override
+  {
+    PetscFunctionBeginUser;
+    room_temperature = material.room_temperature;
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-A", "Johnson-Cook yield stress A (Pa)", &A));
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-B", "Johnson-Cook hardening modulus B (Pa)", &B));
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-n", "Johnson-Cook hardening exponent n (-)", &n));
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-C", "Johnson-Cook rate coefficient C (-)", &C));
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-m", "Johnson-Cook thermal softening exponent m (-)", &m));
+    PetscCall(PetscOptionsReal("-reference_rate", "Johnson-Cook reference plastic strain rate (1/s)", "", rate0, &rate0, nullptr));
+    PetscCall(PetscOptionsReal("-room_temperature", "Johnson-Cook room temperature T_r (K)", "", room_temperature, &room_temperature, nullptr));
+    PetscCall(PetscOptionsReal("-min_rate", "Floor of the plastic strain rate in ln(rate*) (1/s)", "", min_rate, &min_rate, nullptr));
+    const std::string P = PetscOptionsObject->prefix;
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "A").c_str(), A, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "B").c_str(), B, 0, PETSC_MAX_REAL, PETSC_FALSE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "n").c_str(), n, 0, 1, PETSC_TRUE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "C").c_str(), C, 0, 1, PETSC_FALSE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "m").c_str(), m, 0, 10, PETSC_TRUE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "reference_rate").c_str(), rate0, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "min_rate").c_str(), min_rate, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCheck(C == 0 || 1 + C * std::log(min_rate / rate0) > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%smin_rate = %g makes the Johnson-Cook rate factor 1 + C ln(rate*) non-positive; it must exceed %g 1/s", P.c_str(), (double)min_rate, (double)(rate0 * std::exp(-1 / C)));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode View(PetscViewer viewer) const override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  flow stress: johnson_cook A %g Pa, B %g Pa, n %g, C %g, m %g, reference rate %g 1/s, T_r %g K, rate floor %g 1/s\n", (double)A, (double)B, (double)n, (double)C, (double)m, (double)rate0, (double)room_temperature, (double)min_rate));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
+PetscErrorCode JohnsonCookCreate(SubModel **model) { return CreateSubModel<JohnsonCook>(model); }
+
+} // namespace burst

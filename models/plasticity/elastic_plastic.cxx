@@ -1,0 +1,418 @@
+// The hypoelastic-plastic material of the paper (Algorithm 1; models.md 1), model name
+// `elastic_plastic`. Per particle and step:
+//   1. D = sym L; the Green-Naghdi frame: R_{n+1} from the polar decomposition of F_{n+1}; the old
+//      stress is rotated with R_n (stored per particle), D with the mean of R_n and R_{n+1}.
+//   2. Equation of state (pressure at t_{n+1}, tangent bulk modulus), melt temperature, shear
+//      modulus, specific heat.
+//   3. Trial deviator s_tr = s_n + 2 mu dt dev(D_hat); melted points (T >= Tm) lose their deviator.
+//   4. Yield test and return (von Mises radial return or GTN), inlined with the flow-stress model.
+//   5. Porosity (eqs. 15-17), damage (eq. 20/21), temperature (eq. 18 and the Mie-Gruneisen
+//      isentropic term), stability checks (eqs. 23-24).
+//   6. Failure tags (melt, TEPLA-F, critical porosity, stability, sigma_f <= 0), with the time.
+//   7. sigma_{n+1} = R_{n+1} (s - p I) R_{n+1}^T; stress work; wave speed sqrt((K + 4 mu/3)/rho).
+// Particles are processed in chunks of kChunk; each sub-model is called once per chunk.
+#include "families.hpp"
+#include "polar.hpp"
+#include "../flow_stress/flow_stress.hpp"
+#include "../material.hpp"
+#include "../../src/swarm_access.hpp"
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <vector>
+
+namespace burst {
+
+namespace {
+// Field names of the model's per-particle state.
+constexpr const char *kPlasticStrain     = "plastic_strain";
+constexpr const char *kPlasticStrainRate = "plastic_strain_rate";
+constexpr const char *kPorosity          = "porosity";
+constexpr const char *kDamage            = "damage";
+constexpr const char *kRotation          = "rotation";      // R of the polar decomposition at t_n, bs 9
+constexpr const char *kFlowHistory       = "flow_history";  // flow-model history, bs kMaxHistory
+constexpr const char *kFlowStress        = "flow_stress";   // Pa (output)
+constexpr const char *kFailed            = "failed";        // int: failure criterion bits, 0 = intact
+constexpr const char *kFailureTime       = "failure_time";  // s
+constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
+
+// Registers a field unless an earlier material already did (several elastic_plastic materials
+// share one set of fields).
+PetscErrorCode RegisterFieldOnce(DM swarm, const char name[], PetscInt bs, PetscDataType type)
+{
+  static std::set<std::pair<DM, std::string>> done;
+  PetscFunctionBeginUser;
+  if (done.insert({swarm, name}).second) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, bs, type));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Reproducible uniform and normal draws keyed by (seed, particle id): the same on any rank count.
+inline std::uint64_t SplitMix64(std::uint64_t x)
+{
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+inline PetscReal Uniform(std::uint64_t seed, std::uint64_t id, std::uint64_t stream)
+{
+  return ((SplitMix64(SplitMix64(seed ^ SplitMix64(id)) + stream) >> 11) + 0.5) * (1.0 / 9007199254740992.0);
+}
+inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stream)
+{
+  const PetscReal u1 = Uniform(seed, id, 2 * stream), u2 = Uniform(seed, id, 2 * stream + 1);
+  return std::sqrt(-2 * std::log(u1)) * std::cos(2 * PETSC_PI * u2);
+}
+
+enum FailureBits : int { FailMelt = 1, FailTepla = 2, FailPorosity = 4, FailStability = 8, FailStrength = 16 };
+const char *const kFailureNames[] = {"melt", "tepla", "porosity", "stability", "strength"};
+} // namespace
+
+class ElasticPlastic final : public Material {
+public:
+  MaterialConstants                  constants;
+  std::unique_ptr<EquationOfState>   eos;
+  std::unique_ptr<ShearModulusModel> shear;
+  std::unique_ptr<MeltModel>         melt;
+  std::unique_ptr<SpecificHeatModel> specific_heat;
+  std::unique_ptr<FlowStress>        flow;
+  std::unique_ptr<DamageModel>       damage;
+  std::vector<std::unique_ptr<StabilityCheck>> stability;
+  ReturnSettings                     settings;
+  PetscReal                          taylor_quinney = 0.9;
+  PetscBool                          adiabatic      = PETSC_TRUE;
+  // Porosity (eqs. 15-17) and initial distributions
+  PetscBool porosity_growth = PETSC_FALSE, porosity_nucleation = PETSC_FALSE;
+  PetscReal nucleation_fraction = 0.1, nucleation_strain = 0.3, nucleation_deviation = 0.1; // f_n, eps_n, s_n
+  PetscReal porosity_mean = 0, porosity_deviation = 0, damage_mean = 0, damage_deviation = 0;
+  PetscInt  seed = 1;
+  // Failure
+  int       failure_criteria = FailMelt;
+  PetscReal tepla_critical_porosity = 0.3; // f_c of eq. 22 and of the critical-porosity criterion
+
+  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
+  {
+    const std::string P = PetscOptionsObject->prefix;
+    PetscFunctionBeginUser;
+    constants.name    = name_;
+    constants.density = density_;
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-shear_modulus", "Reference shear modulus mu0 (Pa), > 0", &constants.shear_modulus));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "shear_modulus").c_str(), constants.shear_modulus, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(OptionsRequiredReal(PetscOptionsObject, "-bulk_modulus", "Reference bulk modulus K0 (Pa), > 0", &constants.bulk_modulus));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "bulk_modulus").c_str(), constants.bulk_modulus, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(PetscOptionsReal("-room_temperature", "Room (reference) temperature (K)", "", constants.room_temperature, &constants.room_temperature, nullptr));
+    PetscCall(PetscOptionsReal("-taylor_quinney", "Fraction of plastic work converted to heat, chi of eq. 18 (-), in [0, 1]", "", taylor_quinney, &taylor_quinney, nullptr));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "taylor_quinney").c_str(), taylor_quinney, 0, 1, PETSC_FALSE));
+    PetscCall(PetscOptionsBool("-adiabatic", "Plastic work heats the particle (eq. 18); false keeps the temperature (isothermal)", "", adiabatic, &adiabatic, nullptr));
+    int yield = (int)settings.yield;
+    const char *const yield_names[] = {"von_mises", "gtn"};
+    PetscCall(OptionsChoice(PetscOptionsObject, "-yield_type", "Yield condition: von_mises (eq. 12) or gtn (Gurson-Tvergaard-Needleman, eqs. 13-14)", yield_names, 2, &yield, nullptr));
+    settings.yield = (YieldType)yield;
+    PetscCall(PetscOptionsReal("-yield_q1", "GTN q1 (-)", "", settings.gtn.q1, &settings.gtn.q1, nullptr));
+    PetscCall(PetscOptionsReal("-yield_q2", "GTN q2 (-)", "", settings.gtn.q2, &settings.gtn.q2, nullptr));
+    PetscCall(PetscOptionsReal("-yield_q3", "GTN q3 (-)", "", settings.gtn.q3, &settings.gtn.q3, nullptr));
+    PetscCall(PetscOptionsReal("-yield_critical_porosity", "GTN f_c of eq. 14, where void coalescence accelerates f* (-)", "", settings.gtn.critical_porosity, &settings.gtn.critical_porosity, nullptr));
+    PetscCall(PetscOptionsReal("-yield_acceleration", "GTN k of eq. 14 (-)", "", settings.gtn.acceleration, &settings.gtn.acceleration, nullptr));
+    PetscCall(PetscOptionsReal("-return_tolerance", "Relative tolerance of the return-mapping Newton iterations (-)", "", settings.tolerance, &settings.tolerance, nullptr));
+    PetscCall(PetscOptionsBool("-porosity_growth", "Void growth (eq. 16), (1 - f) tr(D_p); zero with von Mises yield", "", porosity_growth, &porosity_growth, nullptr));
+    PetscCall(PetscOptionsBool("-porosity_nucleation", "Strain-controlled void nucleation (eq. 17)", "", porosity_nucleation, &porosity_nucleation, nullptr));
+    PetscCall(PetscOptionsReal("-porosity_nucleation_fraction", "Volume fraction of void-nucleating particles f_n (-)", "", nucleation_fraction, &nucleation_fraction, nullptr));
+    PetscCall(PetscOptionsReal("-porosity_nucleation_strain", "Mean nucleation strain eps_n (-) (NOTES: 0.3; Table 1 swaps it with s_n)", "", nucleation_strain, &nucleation_strain, nullptr));
+    PetscCall(PetscOptionsReal("-porosity_nucleation_deviation", "Standard deviation of the nucleation strain s_n (-)", "", nucleation_deviation, &nucleation_deviation, nullptr));
+    PetscCall(PetscOptionsReal("-porosity_initial_mean", "Initial porosity: mean of the Gaussian (-)", "", porosity_mean, &porosity_mean, nullptr));
+    PetscCall(PetscOptionsReal("-porosity_initial_deviation", "Initial porosity: standard deviation (-), draws clipped at 0", "", porosity_deviation, &porosity_deviation, nullptr));
+    PetscCall(PetscOptionsReal("-damage_initial_mean", "Initial scalar damage: mean of the Gaussian (-)", "", damage_mean, &damage_mean, nullptr));
+    PetscCall(PetscOptionsReal("-damage_initial_deviation", "Initial scalar damage: standard deviation (-), draws clipped at 0", "", damage_deviation, &damage_deviation, nullptr));
+    PetscCall(PetscOptionsInt("-random_seed", "Seed of the initial porosity and damage draws (same run on any rank count)", "", seed, &seed, nullptr));
+    PetscCheck(nucleation_deviation > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%sporosity_nucleation_deviation must be > 0", P.c_str());
+    PetscCheck(porosity_mean >= 0 && porosity_mean < 1 && porosity_deviation >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Options -%sporosity_initial_mean in [0, 1) and -%sporosity_initial_deviation >= 0", P.c_str(), P.c_str());
+    {
+      char    *names[8];
+      PetscInt n = 8;
+      PetscBool set;
+      PetscCall(PetscOptionsStringArray("-failure_criteria", "Failure criteria, any of melt, tepla, porosity, stability, strength (sigma_f <= 0), or none", "", names, &n, &set));
+      if (set) {
+        failure_criteria = 0;
+        for (PetscInt i = 0; i < n; ++i) {
+          int bit = -1;
+          for (int b = 0; b < 5; ++b)
+            if (std::string(names[i]) == kFailureNames[b]) bit = b;
+          PetscCheck(bit >= 0 || std::string(names[i]) == "none", PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Unknown failure criterion '%s' for -%sfailure_criteria; valid choices: melt, tepla, porosity, stability, strength, none", names[i], P.c_str());
+          if (bit >= 0) failure_criteria |= 1 << bit;
+          PetscCall(PetscFree(names[i]));
+        }
+      }
+    }
+    PetscCall(PetscOptionsReal("-failure_porosity", "Critical porosity of TEPLA-F (eq. 22) and of the porosity criterion (-)", "", tepla_critical_porosity, &tepla_critical_porosity, nullptr));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  // Sub-models are created after the material's own options (they need its constants).
+  PetscErrorCode SetUp(MPI_Comm comm) override
+  {
+    PetscFunctionList list;
+    SubModel         *m;
+    PetscFunctionBeginUser;
+    PetscCall(EquationOfStateList(&list));
+    PetscCall(SubModelCreate(comm, list, constants, "eos", "hypoelastic", "Equation of state", &m));
+    eos.reset(static_cast<EquationOfState *>(m));
+    PetscCall(MeltList(&list));
+    PetscCall(SubModelCreate(comm, list, constants, "melt", "constant", "Melt temperature model", &m));
+    melt.reset(static_cast<MeltModel *>(m));
+    PetscCall(ShearModulusList(&list));
+    PetscCall(SubModelCreate(comm, list, constants, "shear_modulus", "constant", "Shear modulus model", &m));
+    shear.reset(static_cast<ShearModulusModel *>(m));
+    PetscCall(SpecificHeatList(&list));
+    PetscCall(SubModelCreate(comm, list, constants, "specific_heat", "constant", "Specific heat model", &m));
+    specific_heat.reset(static_cast<SpecificHeatModel *>(m));
+    MaterialConstants flow_constants = constants;
+    flow_constants.shear_modulus     = shear->ReferenceShearModulus();
+    PetscCall(FlowStressList(&list));
+    PetscCall(SubModelCreate(comm, list, flow_constants, "flow_stress", "johnson_cook", "Flow stress model", &m));
+    flow.reset(static_cast<FlowStress *>(m));
+    PetscCall(DamageList(&list));
+    PetscCall(SubModelCreate(comm, list, constants, "damage", "none", "Damage model", &m));
+    damage.reset(static_cast<DamageModel *>(m));
+    {
+      char    *names[8];
+      PetscInt n = 8;
+      PetscBool set;
+      const std::string prefix = name_ + "_stability_";
+      PetscCall(StabilityList(&list));
+      PetscOptionsBegin(comm, prefix.c_str(), "Stability checks", "Material");
+      PetscCall(PetscOptionsStringArray("-types", "Stability checks, any of the registered names (drucker, acoustic, becker), or none", "", names, &n, &set));
+      PetscOptionsEnd();
+      if (!set) {
+        names[0] = nullptr;
+        PetscCall(PetscStrallocpy("none", &names[0]));
+        n = 1;
+      }
+      for (PetscInt i = 0; i < n; ++i) {
+        PetscCall(SubModelCreate(comm, list, constants, "stability", names[i], "Stability check", &m, PETSC_TRUE));
+        stability.emplace_back(static_cast<StabilityCheck *>(m));
+        PetscCall(PetscFree(names[i]));
+      }
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode RegisterFields(DM swarm) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(RegisterFieldOnce(swarm, kPlasticStrain, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kPlasticStrainRate, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kPorosity, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kDamage, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kRotation, 9, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kFlowStress, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kFailed, 1, PETSC_INT));
+    PetscCall(RegisterFieldOnce(swarm, kFailureTime, 1, PETSC_REAL));
+    PetscCall(RegisterFieldOnce(swarm, kUnstable, 1, PETSC_INT));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) override
+  {
+    SwarmAccess       fields(swarm);
+    const PetscInt   *material;
+    const PetscInt64 *pid;
+    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail;
+    PetscInt         *failed, *unstable;
+    PetscFunctionBeginUser;
+    PetscCall(fields.Get("material", &material));
+    PetscCall(fields.Get(DMSwarmField_pid, &pid));
+    PetscCall(fields.Get(kPlasticStrain, &eps));
+    PetscCall(fields.Get(kPlasticStrainRate, &rate));
+    PetscCall(fields.Get(kPorosity, &f));
+    PetscCall(fields.Get(kDamage, &D));
+    PetscCall(fields.Get(kRotation, &R));
+    PetscCall(fields.Get(kFlowHistory, &history));
+    PetscCall(fields.Get(kFlowStress, &sigma_f));
+    PetscCall(fields.Get(kFailed, &failed));
+    PetscCall(fields.Get(kFailureTime, &t_fail));
+    PetscCall(fields.Get(kUnstable, &unstable));
+    const PetscInt id = id_;
+    for (PetscInt p = begin; p < end; ++p) {
+      if (material[p] != id) continue;
+      eps[p] = rate[p] = sigma_f[p] = 0;
+      t_fail[p]                     = -1;
+      failed[p] = unstable[p] = 0;
+      const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
+      const PetscReal Dp      = damage_mean + damage_deviation * (damage_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 1) : 0);
+      f[p]                    = fp > 0 ? fp : 0;
+      D[p]                    = Dp > 0 ? Dp : 0;
+      for (int a = 0; a < 9; ++a) R[9 * p + a] = (a % 4 == 0) ? 1 : 0;
+      for (int h = 0; h < kMaxHistory; ++h) history[kMaxHistory * p + h] = h < flow->NumHistory() ? flow->InitialHistory(h) : 0;
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
+  {
+    SwarmAccess fields(mp.swarm);
+    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail;
+    PetscInt   *failed, *unstable;
+    Chunk       c;
+    PetscFunctionBeginUser;
+    if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
+    PetscCall(fields.Get(kPlasticStrain, &eps));
+    PetscCall(fields.Get(kPlasticStrainRate, &rate));
+    PetscCall(fields.Get(kPorosity, &f));
+    PetscCall(fields.Get(kDamage, &D));
+    PetscCall(fields.Get(kRotation, &R));
+    PetscCall(fields.Get(kFlowHistory, &history));
+    PetscCall(fields.Get(kFlowStress, &sigma_f));
+    PetscCall(fields.Get(kFailed, &failed));
+    PetscCall(fields.Get(kFailureTime, &t_fail));
+    PetscCall(fields.Get(kUnstable, &unstable));
+    c.dt       = dt;
+    c.density0 = density_;
+    const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
+    Mat3            R_new[kChunk], R_old[kChunk];
+    PetscInt        p = 0;
+    while (p < mp.n) {
+      // gather the next chunk of this material's particles
+      c.n = 0;
+      for (; p < mp.n && c.n < kChunk; ++p)
+        if (mp.material[p] == id) c.index[c.n++] = p;
+      if (!c.n) break;
+      // 1. kinematics in the co-rotated frame
+      for (int k = 0; k < c.n; ++k) {
+        const PetscInt q = c.index[k];
+        Mat3CMap       L(mp.L + 9 * q), F(mp.F + 9 * q), sigma(mp.stress + 9 * q);
+        R_old[k]         = Mat3CMap(R + 9 * q);
+        R_new[k]         = PolarRotation(F);
+        const Mat3 D_lab = 0.5 * (L + L.transpose());
+        const Mat3 Dh    = 0.5 * (R_old[k].transpose() * D_lab * R_old[k] + R_new[k].transpose() * D_lab * R_new[k]);
+        const Mat3 sh    = R_old[k].transpose() * sigma * R_old[k];
+        const PetscReal mean = sh.trace() / 3, trD = Dh.trace();
+        Mat3 Ddev = Dh;
+        Ddev.diagonal().array() -= trD / 3;
+        c.density[k]             = mp.mass[q] / mp.volume[q];
+        c.temperature[k]         = mp.temperature[q];
+        c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
+        c.trace_D[k]             = trD;
+        c.total_rate[k]          = std::sqrt(2.0 / 3.0 * Ddev.squaredNorm());
+        c.mean_stress_old[k]     = mean;
+        c.plastic_strain[k]      = eps[q];
+        c.plastic_strain_rate[k] = rate[q];
+        c.porosity[k]            = f[q];
+        c.damage[k]              = D[q];
+        for (int h = 0; h < kMaxHistory; ++h) c.history[k][h] = history[kMaxHistory * q + h];
+        Mat3Map(c.D_hat[k]) = Dh;
+        Mat3 s              = sh;
+        s.diagonal().array() -= mean;
+        Mat3Map(c.deviator[k]) = s; // s_n for now
+        c.unstable[k]          = 0;
+      }
+      // 2. state: EOS, melt, shear modulus, specific heat
+      eos->Evaluate(c);
+      melt->Evaluate(c);
+      shear->Evaluate(c);
+      specific_heat->Evaluate(c);
+      // 3. trial deviator; melted points carry no deviator
+      for (int k = 0; k < c.n; ++k) {
+        Mat3Map s(c.deviator[k]);
+        if (c.temperature[k] >= c.melt_temperature[k]) {
+          s.setZero();
+          continue;
+        }
+        Mat3 Ddev = Mat3Map(c.D_hat[k]);
+        Ddev.diagonal().array() -= c.trace_D[k] / 3;
+        s += 2 * c.shear_modulus[k] * dt * Ddev;
+      }
+      // 4. yield test and return mapping (flow model inlined)
+      {
+        const PetscErrorCode ierr = flow->Return(c, settings);
+        PetscCheck(ierr != PETSC_ERR_SUP, PETSC_COMM_SELF, PETSC_ERR_SUP, "Material %s: -%s_yield_type gtn is not available yet; use von_mises", Name(), Name());
+        PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
+      }
+      // 5. porosity, temperature, triaxiality; then damage and stability
+      for (int k = 0; k < c.n; ++k) {
+        const PetscReal de = c.delta_plastic_strain[k];
+        PetscReal       df = 0;
+        if (porosity_growth) df += (1 - c.porosity[k]) * c.trace_plastic_strain[k];
+        if (porosity_nucleation && de > 0) {
+          const PetscReal z = (c.plastic_strain[k] - nucleation_strain) / nucleation_deviation;
+          df += nucleation_amplitude * std::exp(-0.5 * z * z) * de;
+        }
+        c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0);
+        // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
+        if (adiabatic) c.temperature[k] += taylor_quinney * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
+        c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : 0;
+      }
+      damage->Evaluate(c);
+      for (auto &check : stability) check->Evaluate(c);
+      // 6-7. failure tags, stress in the laboratory frame, work, wave speed; write back
+      for (int k = 0; k < c.n; ++k) {
+        const PetscInt q = c.index[k];
+        int            bits = 0;
+        if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
+        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity, ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+        if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
+        if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
+        if (c.unstable[k]) bits |= FailStability;
+        if (c.flow_stress[k] <= 0) bits |= FailStrength;
+        bits &= failure_criteria;
+        if (bits && !failed[q]) {
+          failed[q] = bits;
+          t_fail[q] = mp.time;
+        }
+        Mat3 s_hat = Mat3Map(c.deviator[k]);
+        s_hat.diagonal().array() -= c.pressure[k];
+        Mat3Map         sigma(mp.stress + 9 * q);
+        const Mat3      sigma_old = sigma;
+        sigma                     = R_new[k] * s_hat * R_new[k].transpose();
+        Mat3Map(R + 9 * q)        = R_new[k];
+        mp.internal_energy[q] += StressWork(sigma_old.data(), sigma.data(), mp.L + 9 * q, mp.volume[q], dt);
+        mp.temperature[q] = c.temperature[k];
+        mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
+        eps[q]            = c.plastic_strain[k];
+        rate[q]           = c.plastic_strain_rate[k];
+        f[q]              = c.porosity[k];
+        D[q]              = c.damage[k];
+        sigma_f[q]        = c.flow_stress[k];
+        unstable[q]       = c.unstable[k];
+        for (int h = 0; h < kMaxHistory; ++h) history[kMaxHistory * q + h] = c.history[k][h];
+      }
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  // Wave speed from the reference moduli (before the first step).
+  PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) override
+  {
+    for (PetscInt p = 0; p < f.n; ++p)
+      if (f.material[p] == id) f.wave_speed[p] = std::sqrt((constants.bulk_modulus + 4.0 / 3.0 * constants.shear_modulus) * f.volume[p] / f.mass[p]);
+    return PETSC_SUCCESS;
+  }
+
+  PetscErrorCode View(PetscViewer viewer) const override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: elastic_plastic (hypoelastic-plastic, Green-Naghdi frame)\n  density %g kg/m^3, shear modulus %g Pa, bulk modulus %g Pa, room temperature %g K\n", Name(), (double)density_, (double)constants.shear_modulus, (double)constants.bulk_modulus, (double)constants.room_temperature));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  yield: %s; Taylor-Quinney %g, %s\n", settings.yield == YieldType::VonMises ? "von_mises" : "gtn", (double)taylor_quinney, adiabatic ? "adiabatic" : "isothermal"));
+    PetscCall(eos->View(viewer));
+    PetscCall(melt->View(viewer));
+    PetscCall(shear->View(viewer));
+    PetscCall(specific_heat->View(viewer));
+    PetscCall(flow->View(viewer));
+    PetscCall(damage->View(viewer));
+    for (auto &s : stability) PetscCall(s->View(viewer));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off", (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
+PetscErrorCode ElasticPlasticCreate(Material **m)
+{
+  *m = new ElasticPlastic();
+  return PETSC_SUCCESS;
+}
+
+
+} // namespace burst

@@ -1,0 +1,76 @@
+// Radial return for the von Mises yield condition (paper eq. 12) with a rate- and temperature-
+// dependent flow stress. With q_tr = sqrt(3/2 s_tr:s_tr) and the unknown plastic strain increment
+// de (= sqrt(2/3) dgamma), solve by Newton (models.md 4.7)
+//   g(de) = q_tr - 3 mu de - sigma_f(eps_p + de, de/dt, T) = 0,
+//   g'    = -3 mu - (d sigma_f/d eps_p + d sigma_f/d eps_p_dot / dt),
+// then s = s_tr (1 - 3 mu de / q_tr). The plastic rate, floored at the model's min_rate, feeds the
+// flow stress (not the total rate: models.md 2.2).
+#pragma once
+#include "../plasticity/chunk.hpp"
+#include "flow_point.hpp"
+#include <cmath>
+
+namespace burst {
+
+// The flow-model arguments of point k after a plastic strain increment de over dt.
+template <class Flow>
+inline FlowPoint MakeFlowPoint(const Flow &flow, const Chunk &c, int k, PetscReal de)
+{
+  const PetscReal rate = de / c.dt;
+  return FlowPoint{c.plastic_strain[k] + de, de, rate > flow.min_rate ? rate : flow.min_rate, c.temperature[k], c.melt_temperature[k], c.shear_modulus[k], c.density[k], c.history[k]};
+}
+
+// Returns the deviatoric stress of every point of the chunk onto the yield surface.
+template <class Flow>
+PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, PetscInt max_iterations)
+{
+  for (int k = 0; k < c.n; ++k) {
+    PetscReal *s  = c.deviator[k];
+    PetscReal  ss = 0;
+    for (int a = 0; a < 9; ++a) ss += s[a] * s[a];
+    const PetscReal q_trial = std::sqrt(1.5 * ss), mu = c.shear_modulus[k], dt = c.dt;
+    const PetscReal eps0 = c.plastic_strain[k];
+    FlowValue       y;
+    flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
+    c.plastic[k]              = 0;
+    c.delta_plastic_strain[k] = 0;
+    c.trace_plastic_strain[k] = 0;
+    if (q_trial <= y.sigma || y.sigma <= 0 || mu <= 0) {
+      // elastic (or no strength left: the failure check reads sigma_f <= 0)
+      c.flow_stress[k]         = y.sigma;
+      c.hardening[k]           = y.d_strain;
+      c.thermal_softening[k]   = y.d_temperature;
+      c.equivalent_stress[k]   = q_trial;
+      c.plastic_strain_rate[k] = 0;
+      continue;
+    }
+    // Newton on de from the elastic-predictor bound de <= q_trial / (3 mu)
+    PetscReal de = 0, g = q_trial - y.sigma;
+    PetscInt  it = 0;
+    for (; it < max_iterations; ++it) {
+      const PetscReal slope = 3 * mu + y.d_strain + (de / dt > flow.min_rate ? y.d_rate / dt : 0.0);
+      PetscReal       next  = de + g / slope;
+      if (next < 0) next = 0.5 * de;
+      if (next > q_trial / (3 * mu)) next = 0.5 * (de + q_trial / (3 * mu));
+      de = next;
+      flow.Evaluate(MakeFlowPoint(flow, c, k, de), y);
+      g = q_trial - 3 * mu * de - y.sigma;
+      if (std::fabs(g) <= tolerance * y.sigma) break;
+    }
+    if (it == max_iterations || !std::isfinite(de)) return PETSC_ERR_NOT_CONVERGED;
+    const PetscReal scale = 1 - 3 * mu * de / q_trial;
+    for (int a = 0; a < 9; ++a) s[a] *= scale;
+    flow.UpdateHistory(MakeFlowPoint(flow, c, k, de), de, c.history[k]);
+    c.plastic[k]              = 1;
+    c.delta_plastic_strain[k] = de;
+    c.plastic_strain[k]       = eps0 + de;
+    c.plastic_strain_rate[k]  = de / dt;
+    c.flow_stress[k]          = y.sigma;
+    c.hardening[k]            = y.d_strain + (de / dt > flow.min_rate ? y.d_rate / dt : 0.0);
+    c.thermal_softening[k]    = y.d_temperature;
+    c.equivalent_stress[k]    = q_trial * scale;
+  }
+  return PETSC_SUCCESS;
+}
+
+} // namespace burst
