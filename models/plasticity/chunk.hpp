@@ -19,6 +19,8 @@ struct Chunk {
   PetscInt  index[kChunk];         // their indices in the swarm arrays
   PetscReal dt = 0;                // s
   PetscReal density0 = 0;          // reference density, kg/m^3
+  PetscReal taylor_quinney = 0.9;  // chi of eq. 18
+  int       adiabatic = 1;         // plastic work heats the point (stability tangents add thermal softening)
 
   // Kinematics and thermodynamic state (inputs to the sub-models)
   PetscReal density[kChunk];          // current density rho = m / V, kg/m^3

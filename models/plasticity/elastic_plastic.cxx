@@ -268,8 +268,10 @@ public:
     PetscCall(fields.Get(kFailed, &failed));
     PetscCall(fields.Get(kFailureTime, &t_fail));
     PetscCall(fields.Get(kUnstable, &unstable));
-    c.dt       = dt;
-    c.density0 = density_;
+    c.dt             = dt;
+    c.density0       = density_;
+    c.taylor_quinney = taylor_quinney;
+    c.adiabatic      = adiabatic ? 1 : 0;
     const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
     Mat3            R_new[kChunk], R_old[kChunk];
     PetscInt        p = 0;
