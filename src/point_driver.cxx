@@ -11,6 +11,10 @@
 //   rotation            L = W with W_xy = -r, W_yx = r (rigid spin at r rad/s)
 //   hydrostatic         L = r I
 //   velocity_gradient   L = r Lhat, Lhat from -point_velocity_gradient (9 values, row-major)
+//   rotating_uniaxial_strain  F(t) = R(theta(t)) diag(1 + r t, 1, 1), theta from 0 to
+//                       -point_rotation_angle (rad) about z over the run (verification.md 1.4); F is
+//                       set exactly and L = (F_{n+1} - F_n) F_{n+1/2}^{-1} / dt. The CSV stress is
+//                       rotated back by R(theta)^T so it compares with the unrotated path.
 // The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad).
 #include "simulation.hpp"
 #include "swarm_access.hpp"
@@ -22,8 +26,8 @@
 namespace burst {
 
 namespace {
-const char *const PathNames[] = {"uniaxial_strain", "uniaxial_stress", "simple_shear", "rotation", "hydrostatic", "velocity_gradient"};
-enum Path { UniaxialStrain, UniaxialStress, SimpleShear, Rotation, Hydrostatic, VelocityGradient };
+const char *const PathNames[] = {"uniaxial_strain", "uniaxial_stress", "simple_shear", "rotation", "hydrostatic", "velocity_gradient", "rotating_uniaxial_strain"};
+enum Path { UniaxialStrain, UniaxialStress, SimpleShear, Rotation, Hydrostatic, VelocityGradient, RotatingUniaxialStrain };
 
 struct PointOptions {
   int         path          = UniaxialStrain;
@@ -33,6 +37,7 @@ struct PointOptions {
   PetscInt    steps         = 1000;
   PetscBool   adiabatic     = PETSC_TRUE;
   PetscReal   L_hat[9]      = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  PetscReal   rotation_angle = 2 * PETSC_PI; // rad, rotating_uniaxial_strain
   std::string output        = "point.csv";
   std::string material;
 };
@@ -43,7 +48,8 @@ PetscErrorCode ReadPointOptions(MPI_Comm comm, PointOptions &o)
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "", "Material-point driver (-mode point)", "Point");
-  PetscCall(OptionsChoice(PetscOptionsObject, "-point_path", "Deformation path", PathNames, 6, &o.path, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-point_path", "Deformation path", PathNames, 7, &o.path, nullptr));
+  PetscCall(PetscOptionsReal("-point_rotation_angle", "Total rotation about z of the rotating_uniaxial_strain path (rad)", "", o.rotation_angle, &o.rotation_angle, nullptr));
   PetscCall(PetscOptionsReal("-point_rate", "Strain rate (1/s; rad/s for rotation), > 0", "", o.rate, &o.rate, nullptr));
   PetscCall(CheckRange(comm, "-point_rate", o.rate, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-point_temperature", "Initial temperature (K), > 0", "", o.temperature, &o.temperature, nullptr));
@@ -75,8 +81,22 @@ Mat3 PathVelocityGradient(const PointOptions &o, PetscReal a)
   case Rotation: L(0, 1) = -o.rate; L(1, 0) = o.rate; break;
   case Hydrostatic: L = o.rate * Mat3::Identity(); break;
   case VelocityGradient: L = o.rate * Mat3CMap(o.L_hat); break;
+  case RotatingUniaxialStrain: break; // set from F(t), see RotatingF
   }
   return L;
+}
+
+// F(t) of the rotating uniaxial-strain path.
+Mat3 RotatingF(const PointOptions &o, PetscReal t, PetscReal total_time)
+{
+  const PetscReal theta = o.rotation_angle * t / total_time;
+  Mat3            R     = Mat3::Identity();
+  R(0, 0) = R(1, 1) = std::cos(theta);
+  R(0, 1)           = -std::sin(theta);
+  R(1, 0)           = std::sin(theta);
+  Mat3 U            = Mat3::Identity();
+  U(0, 0)           = 1 + o.rate * t;
+  return R * U;
 }
 } // namespace
 
@@ -168,9 +188,13 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         PetscCall(f.Get(field::volume0, &V0));
         PetscCall(f.Get(field::temperature, &T));
         PetscCall(f.Get(field::stress, &sigma));
-        const Mat3 L = PathVelocityGradient(o, a);
-        Mat3Map(Lp + 9)  = L;
-        Mat3Map(F + 9)   = (sim.f_update == FUpdate::Exponential ? Expm(L * dt) : Mat3(Mat3::Identity() + L * dt)) * Mat3Map(F + 9);
+        Mat3 L = PathVelocityGradient(o, a);
+        if (o.path == RotatingUniaxialStrain) {
+          const Mat3 F0 = RotatingF(o, (step - 1) * dt, total_time), F1 = RotatingF(o, step * dt, total_time);
+          L               = (F1 - F0) * (0.5 * (F0 + F1)).inverse() / dt;
+          Mat3Map(F + 9)  = F1;
+        } else Mat3Map(F + 9) = (sim.f_update == FUpdate::Exponential ? Expm(L * dt) : Mat3(Mat3::Identity() + L * dt)) * Mat3Map(F + 9);
+        Mat3Map(Lp + 9) = L;
         V[1]             = V0[1] * Mat3Map(F + 9).determinant();
         mat[0]           = -1; // only the trial point takes the step
         mp.n             = 2;
@@ -248,7 +272,15 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     PetscCall(f.Get(field::stress, &sigma));
     PetscCall(f.Get(field::temperature, &T));
     PetscCall(f.Get(field::F, &F));
-    const Mat3      s0 = Mat3CMap(sigma);
+    Mat3 s0 = Mat3CMap(sigma);
+    if (o.path == RotatingUniaxialStrain) { // report in the unrotated frame
+      const PetscReal theta = o.rotation_angle * step / o.steps;
+      Mat3            Q     = Mat3::Identity();
+      Q(0, 0) = Q(1, 1) = std::cos(theta);
+      Q(0, 1)           = -std::sin(theta);
+      Q(1, 0)           = std::sin(theta);
+      s0                = Q.transpose() * s0 * Q;
+    }
     const PetscReal p  = -s0.trace() / 3;
     Mat3            dev = s0;
     dev.diagonal().array() += p;

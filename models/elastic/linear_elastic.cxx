@@ -1,7 +1,9 @@
-// Linear hypoelastic material with the Jaumann objective rate:
-//   sigma_{n+1} = sigma_n + dt [ lambda tr(D) I + 2 mu D + W sigma_n - sigma_n W ],
-// D = sym(L), W = skew(L). Small-strain linear elasticity for small rotations; the co-rotational
-// (Green-Naghdi) update of the metal models lives in the metal-model layer.
+// Linear hypoelastic material with the Jaumann objective rate, sigma_dot - W sigma + sigma W = C : D,
+// integrated with the Hughes-Winget rotation (IJNME 15 (1980) 1862):
+//   sigma_{n+1} = Q sigma_n Q^T + dt [ lambda tr(D) I + 2 mu D ],  Q = (I - W dt/2)^{-1} (I + W dt/2),
+// D = sym(L), W = skew(L). Q is exactly orthogonal, so a pure spin rotates the stress without
+// changing its invariants, and the update is second-order in the spin. The co-rotational
+// (Green-Naghdi) update of the metal models is in models/plasticity/.
 #include "elastic_parameters.hpp"
 #include "tensor.hpp"
 #include <cmath>
@@ -25,7 +27,8 @@ public:
       Mat3Map         sigma(f.stress + 9 * p);
       const Mat3      D = 0.5 * (L + L.transpose()), W = 0.5 * (L - L.transpose());
       const Mat3      sigma_old = sigma;
-      sigma += dt * (lambda * D.trace() * I + 2 * mu * D + W * sigma_old - sigma_old * W);
+      const Mat3      Q         = (I - 0.5 * dt * W).inverse() * (I + 0.5 * dt * W);
+      sigma                     = Q * sigma_old * Q.transpose() + dt * (lambda * D.trace() * I + 2 * mu * D);
       f.internal_energy[p] += StressWork(sigma_old.data(), sigma.data(), f.L + 9 * p, f.volume[p], dt);
       f.wave_speed[p] = std::sqrt(modulus * f.volume[p] / f.mass[p]); // current density m/V
     }
