@@ -288,9 +288,11 @@ TEST(LinearElastic, UniaxialStrain)
 
 // Pure spin L = [[0, w, 0], [-w, 0, 0], [0, 0, 0]] (D = 0):
 //  - from zero stress the stress stays exactly zero (200 steps) and no work is done;
-//  - from sigma = diag(s, 0, 0) one step gives the Jaumann rotation W sigma - sigma W:
-//    sigma_xy = sigma_yx = -s w dt, the rest unchanged. s = 100 Pa, w = 3 /s, dt = 1e-3 s -> -0.3 Pa
-//    (= first order of R sigma R^T for the rotation by -w dt about z that this L describes).
+//  - from sigma = diag(s, 0, 0) one step rotates the stress by the Hughes-Winget (Cayley) rotation
+//    Q = (I - W dt/2)^{-1} (I + W dt/2): a rotation by phi = 2 atan(w dt/2) about z, so
+//    sigma = s [[cos^2 phi, -sin phi cos phi], [-sin phi cos phi, sin^2 phi]]; s = 100 Pa, w = 3 /s,
+//    dt = 1e-3 s: sigma_xy = -0.299999550... Pa (first order: -s w dt = -0.3, the Jaumann rate), and
+//    the invariants (trace, Frobenius norm) are unchanged to round-off because Q is orthogonal.
 TEST(LinearElastic, PureSpin)
 {
   ScopedOptions opt;
@@ -301,14 +303,18 @@ TEST(LinearElastic, PureSpin)
   for (int p = 0; p < 2; ++p) pts.SetL(p, M3of(0, w, 0, -w, 0, 0, 0, 0, 0));
   pts.SetStress(1, M3of(100, 0, 0, 0, 0, 0, 0, 0, 0));
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
-  const M3     expect1 = M3of(100, -0.3, 0, -0.3, 0, 0, 0, 0, 0);
+  const double phi = 2 * std::atan(0.5 * w * dt), c = std::cos(phi), sn = std::sin(phi);
+  const M3     expect1 = M3of(100 * c * c, -100 * sn * c, 0, -100 * sn * c, 100 * sn * sn, 0, 0, 0, 0);
   const M3     s1      = pts.Stress(1);
   const double err1    = MaxAbs(s1 - expect1) / 100;
   for (int step = 1; step < 200; ++step) ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
-  std::printf("  prestressed, one step: sigma_xy = %.15g, sigma_yx = %.15g Pa (hand -0.3)\n", s1(0, 1), s1(1, 0));
+  std::printf("  prestressed, one step: sigma_xy = %.15g, sigma_yx = %.15g Pa (hand %.15g; Jaumann first order -0.3)\n", s1(0, 1), s1(1, 0), -100 * sn * c);
+  const double err_norm = std::fabs(s1.norm() - 100) / 100;
+  Report("linear elastic spin of diag(100,0,0): | |sigma| - 100 | / 100", err_norm, 1e-14, "Q orthogonal: invariants kept");
+  EXPECT_LE(err_norm, 1e-14);
   Report("linear elastic spin from zero stress (200 steps): max |sigma|", MaxAbs(pts.Stress(0)), 0.0, "D = 0: no stress rate");
   Report("linear elastic spin from zero stress: |work|", std::fabs(pts.energy[0]), 0.0, "D = 0: no stress power");
-  Report("linear elastic spin of diag(100,0,0): max |sigma - hand| / 100", err1, 1e-14, "hand: Jaumann rate W sigma - sigma W");
+  Report("linear elastic spin of diag(100,0,0): max |sigma - hand| / 100", err1, 1e-14, "hand: Hughes-Winget rotation by 2 atan(w dt/2)");
   EXPECT_EQ(MaxAbs(pts.Stress(0)), 0.0);
   EXPECT_EQ(pts.energy[0], 0.0);
   EXPECT_LE(err1, 1e-14);
