@@ -53,6 +53,8 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
     PetscInt n = 3;
     PetscCall(PetscOptionsRealArray("-gravity", "Body acceleration gx,gy[,gz] (m/s^2); missing components are 0", "", sim.gravity, &n, &set));
   }
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.viscosity, 2, nullptr));
+  PetscCheck(sim.viscosity[0] >= 0 && sim.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");
   PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 

@@ -41,6 +41,7 @@ inline constexpr const char *external_force  = "external_force";    // N, bs dim
 inline constexpr const char *traction_area0  = "traction_area0";    // m^2, bs dim: outward normal x area at seeding
 inline constexpr const char *load_curve      = "load_curve";        // int: index of the pressure load curve, -1 none
 inline constexpr const char *material        = "material";          // int: material id
+inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
@@ -107,6 +108,7 @@ struct Simulation {
   PetscReal   gravity[3] = {0, 0, 0};
   PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void
   PetscReal   mass_cutoff = 0;             // kg, from the fraction and the densest material
+  PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
 
   // Output
   PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)

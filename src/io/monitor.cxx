@@ -55,31 +55,34 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Position and displacement of the tracked particle (-monitor_track_pid), gathered to every rank.
-static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[6])
+// Position, displacement and normal stresses of the tracked particle (-monitor_track_pid),
+// gathered to every rank.
+static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
 {
   PetscInt          n, dim = sim.grid.dim;
-  const PetscReal  *x, *X0;
+  const PetscReal  *x, *X0, *sigma;
   const PetscInt64 *pid;
-  PetscReal         local[7] = {0, 0, 0, 0, 0, 0, 0}, global[7];
+  PetscReal         local[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, global[10];
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::position0, &X0));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  PetscCall(fields.Get(field::stress, &sigma));
   for (PetscInt p = 0; p < n; ++p)
     if (pid[p] == sim.track_pid) {
       for (PetscInt d = 0; d < dim; ++d) {
         local[d]     = x[dim * p + d];
         local[3 + d] = x[dim * p + d] - X0[dim * p + d];
       }
-      local[6] = 1;
+      for (int d = 0; d < 3; ++d) local[6 + d] = sigma[9 * p + 4 * d];
+      local[9] = 1;
     }
   PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Allreduce(local, global, 7, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCheck(global[6] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids run from 0 to %" PetscInt64_FMT ")", sim.track_pid, sim.next_pid - 1);
-  for (int k = 0; k < 6; ++k) xu[k] = global[k];
+  PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids run from 0 to %" PetscInt64_FMT ")", sim.track_pid, sim.next_pid - 1);
+  for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -95,7 +98,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
     std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
-    if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz");
+    if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     std::fprintf(csv, "\n");
   }
   PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
@@ -119,7 +122,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   if (!force && sim.step % sim.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(sim.ev_monitor, 0, 0, 0, 0));
   PetscCall(ComputeEnergies(sim, r));
-  PetscReal rms = 0, max = 0, track[6] = {0, 0, 0, 0, 0, 0};
+  PetscReal rms = 0, max = 0, track[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (sim.analytic) {
     PetscCall(AnalyticDisplacementError(sim, &rms, &max));
     sim.diag.max_error_displacement  = PetscMax(sim.diag.max_error_displacement, rms);
@@ -131,7 +134,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.track_pid >= 0)
-      for (int k = 0; k < 6; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
+      for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
     std::fprintf(csv, "\n");
     std::fflush(csv);
   }

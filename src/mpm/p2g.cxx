@@ -17,7 +17,7 @@ struct P2GKernel {
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
-    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext;
+    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
@@ -29,11 +29,12 @@ struct P2GKernel {
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(field::stress, &sigma));
     PetscCall(fields.Get(field::external_force, &fext));
+    PetscCall(fields.Get(field::bulk_viscosity, &q));
     Stencil<DIM, S> st;
     const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      const PetscReal  mp = m[p], Vp = vol[p];
+      const PetscReal  mp = m[p], Vp = vol[p], qp = q[p];
       const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         PetscScalar *node = nodal + index(i, j, k) * dof; // velocity field 0
@@ -44,6 +45,7 @@ struct P2GKernel {
           for (int a = 0; a < DIM; ++a) {
             PetscReal div = 0;
             for (int b = 0; b < DIM; ++b) div += s[3 * a + b] * dN[b];
+            div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
             node[1 + DIM + a] += -Vp * div + N * fe[a];
           }
       });

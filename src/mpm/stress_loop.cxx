@@ -34,6 +34,25 @@ PetscErrorCode UpdateStress(Simulation &sim)
   PetscCall(GetPointFields(fields, sim.swarm, f));
   f.time = sim.time + sim.dt;
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) PetscCall(sim.materials[id]->UpdateStress(f, id, sim.dt));
+  if (sim.viscosity[0] > 0 || sim.viscosity[1] > 0) {
+    // Artificial bulk viscosity (models.md 5.5; von Neumann-Richtmyer with a linear term): acts in
+    // compression only, enters the internal force as -q I (p2g.cxx), and its work is dissipated:
+    // added to the internal energy so the balance closes.
+    PetscReal *q;
+    PetscCall(fields.Get(field::bulk_viscosity, &q));
+    PetscReal dx = 0;
+    for (PetscInt d = 0; d < sim.grid.dim; ++d) dx += sim.grid.h[d] / sim.grid.dim;
+    for (PetscInt p = 0; p < f.n; ++p) {
+      const PetscReal *L = f.L + 9 * p, trace_D = L[0] + L[4] + L[8];
+      if (trace_D >= 0) {
+        q[p] = 0;
+        continue;
+      }
+      const PetscReal rho = f.mass[p] / f.volume[p];
+      q[p]                = rho * (sim.viscosity[0] * f.wave_speed[p] * -trace_D * dx + sim.viscosity[1] * trace_D * trace_D * dx * dx);
+      f.internal_energy[p] += -q[p] * trace_D * f.volume[p] * sim.dt;
+    }
+  }
   PetscCall(fields.RestoreAll());
   PetscCall(PetscLogEventEnd(sim.ev_stress, 0, 0, 0, 0));
   PetscCall(CheckParticleState(sim, "stress update"));
