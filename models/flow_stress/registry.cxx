@@ -5,6 +5,7 @@ namespace burst {
 
 PetscErrorCode JohnsonCookCreate(SubModel **);
 PetscErrorCode LinearHardeningCreate(SubModel **);
+PetscErrorCode MTSFlowCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -16,6 +17,7 @@ PetscErrorCode FlowStressList(PetscFunctionList *list)
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "johnson_cook", JohnsonCookCreate));
     PetscCall(PetscFunctionListAdd(&list_, "linear_hardening", LinearHardeningCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "mts", MTSFlowCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,6 +4,7 @@
 namespace burst {
 
 PetscErrorCode ConstantMeltCreate(SubModel **);
+PetscErrorCode SCGMeltCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -14,6 +15,7 @@ PetscErrorCode MeltList(PetscFunctionList *list)
   PetscFunctionBeginUser;
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "constant", ConstantMeltCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "scg", SCGMeltCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);

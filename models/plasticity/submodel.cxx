@@ -33,7 +33,9 @@ PetscErrorCode SubModelCreate(MPI_Comm comm, PetscFunctionList list, const Mater
   std::unique_ptr<SubModel> owner(created);
   owner->type   = type;
   owner->prefix = prefix;
-  PetscOptionsBegin(comm, prefix.c_str(), help, "Material");
+  // a title of its own: PETSc prints -help once per (prefix, title)
+  const std::string title = std::string(help) + ": " + type + " parameters";
+  PetscOptionsBegin(comm, prefix.c_str(), title.c_str(), "Material");
   PetscCall(owner->SetFromOptions(PetscOptionsObject, material));
   PetscOptionsEnd();
   *model = owner.release();

@@ -4,6 +4,8 @@
 namespace burst {
 
 PetscErrorCode ConstantShearCreate(SubModel **);
+PetscErrorCode MTSShearCreate(SubModel **);
+PetscErrorCode SCGShearCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -14,6 +16,8 @@ PetscErrorCode ShearModulusList(PetscFunctionList *list)
   PetscFunctionBeginUser;
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "constant", ConstantShearCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "mts", MTSShearCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "scg", SCGShearCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -4,6 +4,9 @@
 namespace burst {
 
 PetscErrorCode ConstantSpecificHeatCreate(SubModel **);
+PetscErrorCode SteelSpecificHeatCreate(SubModel **);
+PetscErrorCode GotoSpecificHeatCreate(SubModel **);
+PetscErrorCode CopperSpecificHeatCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -14,6 +17,9 @@ PetscErrorCode SpecificHeatList(PetscFunctionList *list)
   PetscFunctionBeginUser;
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "constant", ConstantSpecificHeatCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "steel", SteelSpecificHeatCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "goto", GotoSpecificHeatCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "copper", CopperSpecificHeatCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);
