@@ -23,7 +23,7 @@ import tempfile
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-METAL = os.path.join(ROOT, "tests/decks/metal_linear_hardening.opts")
+METAL = os.path.join(ROOT, "tests/materials/metal_linear_hardening.opts")
 
 
 def point(burst, options, out):

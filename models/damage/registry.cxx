@@ -4,6 +4,8 @@
 namespace burst {
 
 PetscErrorCode NoDamageCreate(SubModel **);
+PetscErrorCode JohnsonCookDamageCreate(SubModel **);
+PetscErrorCode HancockMacKenzieDamageCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -14,6 +16,8 @@ PetscErrorCode DamageList(PetscFunctionList *list)
   PetscFunctionBeginUser;
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "none", NoDamageCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "johnson_cook", JohnsonCookDamageCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "hancock_mackenzie", HancockMacKenzieDamageCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -28,10 +28,10 @@ class FlowStress : public SubModel {
 public:
   // Return mapping for every point of the chunk: reads the trial deviator in c.deviator, writes the
   // returned deviator, plastic_strain(_rate), delta_plastic_strain, trace_plastic_strain,
-  // flow_stress, hardening, thermal_softening, equivalent_stress, plastic, history, and for GTN
-  // the pressure and porosity. Returns non-zero on a Newton failure.
+  // flow_stress, hardening, rate_hardening, thermal_softening, equivalent_stress, plastic, history,
+  // and for GTN the pressure (the material updates the porosity from trace_plastic_strain).
+  // Returns non-zero on a Newton failure.
   virtual PetscErrorCode Return(Chunk &c, const ReturnSettings &settings) const = 0;
-  // Flow stress at the state of each point (for the stability checks and output).
   virtual int         NumHistory() const { return 0; }
   virtual const char *HistoryName(int) const { return ""; }
   virtual PetscReal   InitialHistory(int) const { return 0; }

@@ -47,7 +47,9 @@ struct Chunk {
 
   // Results of the return mapping, read by damage, stability and failure
   PetscReal flow_stress[kChunk];        // sigma_f at t_{n+1}, Pa
-  PetscReal hardening[kChunk];          // d sigma_f / d eps_p (incl. rate term / dt), Pa
+  PetscReal hardening[kChunk];          // strain hardening d sigma_f / d eps_p, Pa (what the stability tangents use)
+  PetscReal rate_hardening[kChunk];     // d sigma_f / d eps_p_dot / dt, Pa: the rate part of the return's Newton
+                                        // slope; left out of the stability tangents (it grows as dt shrinks)
   PetscReal thermal_softening[kChunk];  // d sigma_f / dT, Pa/K
   PetscReal delta_plastic_strain[kChunk];
   PetscReal trace_plastic_strain[kChunk]; // tr(Delta eps_p) (GTN), -

@@ -36,14 +36,22 @@ constexpr const char *kFlowStress        = "flow_stress";   // Pa (output)
 constexpr const char *kFailed            = "failed";        // int: failure criterion bits, 0 = intact
 constexpr const char *kFailureTime       = "failure_time";  // s
 constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
+constexpr const char *kPlasticDilatation = "plastic_dilatation"; // accumulated tr(eps_p) (GTN), -
 
-// Registers a field unless an earlier material already did (several elastic_plastic materials
-// share one set of fields).
-PetscErrorCode RegisterFieldOnce(DM swarm, const char name[], PetscInt bs, PetscDataType type)
+// Registers the model's fields once per swarm (several elastic_plastic materials share them); the
+// mark is composed with the swarm, so it lives and dies with it.
+PetscErrorCode FieldsRegistered(DM swarm, PetscBool *registered)
 {
-  static std::set<std::pair<DM, std::string>> done;
+  PetscObject mark = nullptr;
   PetscFunctionBeginUser;
-  if (done.insert({swarm, name}).second) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, bs, type));
+  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_elastic_plastic_fields", &mark));
+  *registered = mark ? PETSC_TRUE : PETSC_FALSE;
+  if (!mark) {
+    PetscContainer container;
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
+    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_elastic_plastic_fields", (PetscObject)container));
+    PetscCall(PetscContainerDestroy(&container));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -83,7 +91,7 @@ public:
   PetscReal                          taylor_quinney = 0.9;
   PetscBool                          adiabatic      = PETSC_TRUE;
   // Porosity (eqs. 15-17) and initial distributions
-  PetscBool porosity_growth = PETSC_FALSE, porosity_nucleation = PETSC_FALSE;
+  PetscBool porosity_growth = PETSC_FALSE, porosity_nucleation = PETSC_FALSE, nucleation_tension_only = PETSC_TRUE;
   PetscReal nucleation_fraction = 0.1, nucleation_strain = 0.3, nucleation_deviation = 0.1; // f_n, eps_n, s_n
   PetscReal porosity_mean = 0, porosity_deviation = 0, damage_mean = 0, damage_deviation = 0;
   PetscInt  seed = 1;
@@ -117,6 +125,7 @@ public:
     PetscCall(PetscOptionsReal("-return_tolerance", "Relative tolerance of the return-mapping Newton iterations (-)", "", settings.tolerance, &settings.tolerance, nullptr));
     PetscCall(PetscOptionsBool("-porosity_growth", "Void growth (eq. 16), (1 - f) tr(D_p); zero with von Mises yield", "", porosity_growth, &porosity_growth, nullptr));
     PetscCall(PetscOptionsBool("-porosity_nucleation", "Strain-controlled void nucleation (eq. 17)", "", porosity_nucleation, &porosity_nucleation, nullptr));
+    PetscCall(PetscOptionsBool("-porosity_nucleation_tension_only", "Nucleate voids only under tensile mean stress (with GTN, nucleation under strong compression collapses the pressure)", "", nucleation_tension_only, &nucleation_tension_only, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_fraction", "Volume fraction of void-nucleating particles f_n (-)", "", nucleation_fraction, &nucleation_fraction, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_strain", "Mean nucleation strain eps_n (-) (NOTES: 0.3; Table 1 swaps it with s_n)", "", nucleation_strain, &nucleation_strain, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_deviation", "Standard deviation of the nucleation strain s_n (-)", "", nucleation_deviation, &nucleation_deviation, nullptr));
@@ -125,6 +134,7 @@ public:
     PetscCall(PetscOptionsReal("-damage_initial_mean", "Initial scalar damage: mean of the Gaussian (-)", "", damage_mean, &damage_mean, nullptr));
     PetscCall(PetscOptionsReal("-damage_initial_deviation", "Initial scalar damage: standard deviation (-), draws clipped at 0", "", damage_deviation, &damage_deviation, nullptr));
     PetscCall(PetscOptionsInt("-random_seed", "Seed of the initial porosity and damage draws (same run on any rank count)", "", seed, &seed, nullptr));
+    settings.gtn.growth = porosity_growth; // the GTN return grows f implicitly exactly as step 5 does
     PetscCheck(nucleation_deviation > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%sporosity_nucleation_deviation must be > 0", P.c_str());
     PetscCheck(porosity_mean >= 0 && porosity_mean < 1 && porosity_deviation >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Options -%sporosity_initial_mean in [0, 1) and -%sporosity_initial_deviation >= 0", P.c_str(), P.c_str());
     {
@@ -199,17 +209,16 @@ public:
 
   PetscErrorCode RegisterFields(DM swarm) override
   {
+    PetscBool registered;
     PetscFunctionBeginUser;
-    PetscCall(RegisterFieldOnce(swarm, kPlasticStrain, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kPlasticStrainRate, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kPorosity, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kDamage, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kRotation, 9, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kFlowStress, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kFailed, 1, PETSC_INT));
-    PetscCall(RegisterFieldOnce(swarm, kFailureTime, 1, PETSC_REAL));
-    PetscCall(RegisterFieldOnce(swarm, kUnstable, 1, PETSC_INT));
+    PetscCall(FieldsRegistered(swarm, &registered));
+    if (registered) PetscFunctionReturn(PETSC_SUCCESS);
+    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime};
+    for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, 1, PETSC_REAL));
+    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kRotation, 9, PETSC_REAL));
+    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
+    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFailed, 1, PETSC_INT));
+    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kUnstable, 1, PETSC_INT));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
@@ -218,10 +227,11 @@ public:
     SwarmAccess       fields(swarm);
     const PetscInt   *material;
     const PetscInt64 *pid;
-    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail;
+    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation;
     PetscInt         *failed, *unstable;
     PetscFunctionBeginUser;
     PetscCall(fields.Get("material", &material));
+    PetscCall(fields.Get(kPlasticDilatation, &dilatation));
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
@@ -236,7 +246,7 @@ public:
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
       if (material[p] != id) continue;
-      eps[p] = rate[p] = sigma_f[p] = 0;
+      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = 0;
       t_fail[p]                     = -1;
       failed[p] = unstable[p] = 0;
       const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
@@ -253,11 +263,12 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
     SwarmAccess fields(mp.swarm);
-    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail;
+    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation;
     PetscInt   *failed, *unstable;
     Chunk       c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
+    PetscCall(fields.Get(kPlasticDilatation, &dilatation));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
     PetscCall(fields.Get(kPorosity, &f));
@@ -293,7 +304,9 @@ public:
         const PetscReal mean = sh.trace() / 3, trD = Dh.trace();
         Mat3 Ddev = Dh;
         Ddev.diagonal().array() -= trD / 3;
-        c.density[k]             = mp.mass[q] / mp.volume[q];
+        // the EOS sees the elastic density: the plastic dilatation of the voids (GTN) is not
+        // elastic compression, rho_e = rho exp(tr eps_p)
+        c.density[k]             = mp.mass[q] / mp.volume[q] * std::exp(dilatation[q]);
         c.temperature[k]         = mp.temperature[q];
         c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
         c.trace_D[k]             = trD;
@@ -329,22 +342,25 @@ public:
       // 4. yield test and return mapping (flow model inlined)
       {
         const PetscErrorCode ierr = flow->Return(c, settings);
-        PetscCheck(ierr != PETSC_ERR_SUP, PETSC_COMM_SELF, PETSC_ERR_SUP, "Material %s: -%s_yield_type gtn is not available yet; use von_mises", Name(), Name());
         PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
       }
       // 5. porosity, temperature, triaxiality; then damage and stability
+      PetscReal porosity_old[kChunk];
+      for (int k = 0; k < c.n; ++k) porosity_old[k] = c.porosity[k];
       for (int k = 0; k < c.n; ++k) {
         const PetscReal de = c.delta_plastic_strain[k];
         PetscReal       df = 0;
         if (porosity_growth) df += (1 - c.porosity[k]) * c.trace_plastic_strain[k];
-        if (porosity_nucleation && de > 0) {
+        if (porosity_nucleation && de > 0 && !(nucleation_tension_only && c.pressure[k] >= 0)) {
           const PetscReal z = (c.plastic_strain[k] - nucleation_strain) / nucleation_deviation;
           df += nucleation_amplitude * std::exp(-0.5 * z * z) * de;
         }
         c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0);
         // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
-        if (adiabatic) c.temperature[k] += taylor_quinney * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
-        c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : 0;
+        // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
+        const PetscReal matrix = settings.yield == YieldType::GTN ? 1 - porosity_old[k] : 1;
+        if (adiabatic) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
+        c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
       }
       damage->Evaluate(c);
       for (auto &check : stability) check->Evaluate(c);
@@ -373,6 +389,7 @@ public:
         mp.temperature[q] = c.temperature[k];
         mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
         eps[q]            = c.plastic_strain[k];
+        dilatation[q] += c.trace_plastic_strain[k];
         rate[q]           = c.plastic_strain_rate[k];
         f[q]              = c.porosity[k];
         D[q]              = c.damage[k];

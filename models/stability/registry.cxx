@@ -4,6 +4,9 @@
 namespace burst {
 
 PetscErrorCode NoStabilityCreate(SubModel **);
+PetscErrorCode DruckerCheckCreate(SubModel **);
+PetscErrorCode AcousticCheckCreate(SubModel **);
+PetscErrorCode BeckerCheckCreate(SubModel **);
 
 namespace {
 PetscFunctionList list_ = nullptr;
@@ -14,6 +17,9 @@ PetscErrorCode StabilityList(PetscFunctionList *list)
   PetscFunctionBeginUser;
   if (!list_) {
     PetscCall(PetscFunctionListAdd(&list_, "none", NoStabilityCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "drucker", DruckerCheckCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "acoustic", AcousticCheckCreate));
+    PetscCall(PetscFunctionListAdd(&list_, "becker", BeckerCheckCreate));
   }
   *list = list_;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -39,6 +39,7 @@ PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, P
       // elastic (or no strength left: the failure check reads sigma_f <= 0)
       c.flow_stress[k]         = y.sigma;
       c.hardening[k]           = y.d_strain;
+      c.rate_hardening[k]      = 0;
       c.thermal_softening[k]   = y.d_temperature;
       c.equivalent_stress[k]   = q_trial;
       c.plastic_strain_rate[k] = 0;
@@ -66,7 +67,8 @@ PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, P
     c.plastic_strain[k]       = eps0 + de;
     c.plastic_strain_rate[k]  = de / dt;
     c.flow_stress[k]          = y.sigma;
-    c.hardening[k]            = y.d_strain + (de / dt > flow.min_rate ? y.d_rate / dt : 0.0);
+    c.hardening[k]            = y.d_strain;
+    c.rate_hardening[k]       = de / dt > flow.min_rate ? y.d_rate / dt : 0.0;
     c.thermal_softening[k]    = y.d_temperature;
     c.equivalent_stress[k]    = q_trial * scale;
   }

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <string>
 #include <vector>
+#include "unit_helpers.hpp"
 
 using namespace burst;
 
@@ -41,31 +42,6 @@ void ReportCode(const std::string &what, PetscErrorCode measured, PetscErrorCode
   std::fflush(stdout);
 }
 
-// Sets PETSc options for one test and clears them again when it ends, so tests do not see each
-// other's options (each test also uses its own material name).
-class ScopedOptions {
-public:
-  ~ScopedOptions()
-  {
-    for (const std::string &n : names_) PetscOptionsClearValue(nullptr, n.c_str());
-  }
-  void Set(const std::string &name, const std::string &value)
-  {
-    EXPECT_EQ(PetscOptionsSetValue(nullptr, name.c_str(), value.c_str()), 0) << name;
-    names_.push_back(name);
-  }
-  // -<mat>_model, -<mat>_density, -<mat>_youngs_modulus, -<mat>_poisson_ratio (empty: not set)
-  void Material(const std::string &mat, const std::string &model, const std::string &density, const std::string &E, const std::string &nu)
-  {
-    if (!model.empty()) Set("-" + mat + "_model", model);
-    if (!density.empty()) Set("-" + mat + "_density", density);
-    if (!E.empty()) Set("-" + mat + "_youngs_modulus", E);
-    if (!nu.empty()) Set("-" + mat + "_poisson_ratio", nu);
-  }
-
-private:
-  std::vector<std::string> names_;
-};
 
 // Owns the arrays of a few material points and hands them out as MaterialPointFields.
 struct Points {
