@@ -15,8 +15,8 @@
 #include "../src/petsc_compat.hpp"
 #include <petscdm.h>
 #include <petscdmswarm.h>
-#include <map>
 #include <string>
+#include <vector>
 
 namespace burst {
 
@@ -35,6 +35,13 @@ struct MaterialPointFields {
   PetscReal       *internal_energy = nullptr; // in/out: accumulated stress work, J
   DM               swarm = nullptr;           // the swarm, for fields a model registered itself
   PetscReal        time  = 0;                 // t_{n+1}, s
+};
+
+// A per-particle field a model registered and wants in the output.
+struct OutputField {
+  const char *name;
+  PetscInt    bs;
+  bool        is_int;
 };
 
 class Material {
@@ -56,6 +63,8 @@ public:
   virtual PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) = 0;
   // Prints every parameter with its unit.
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  // Model fields written with the particles (HDF5/XDMF).
+  virtual std::vector<OutputField> OutputFields() const { return {}; }
 
   const char *Name() const { return name_.c_str(); }
   const char *Model() const { return model_.c_str(); }

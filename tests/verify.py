@@ -236,7 +236,7 @@ def read_particles(out):
     with h5py.File(os.path.join(out, files[-1]), "r") as f:
         g = f["particles"]
         order = np.argsort(g["id"][...].ravel())
-        return {k: g[k][...][order] for k in ("id", "coordinates", "velocity", "stress")}
+        return {k: g[k][...][order] for k in ("id", "coordinates", "velocity", "stress", "temperature", "porosity", "plastic_strain", "damage") if k in g}
 
 
 def parallel(args):
@@ -263,6 +263,10 @@ def parallel(args):
     check("max velocity difference / max velocity", dv, args.tol, failures)
     check("max stress difference / max stress", ds, args.tol, failures)
     check("kinetic energy difference (relative)", de, args.tol, failures)
+    for key in ("temperature", "porosity", "plastic_strain", "damage"):
+        if key in p1:
+            scale = max(np.abs(p1[key]).max(), 1e-300)
+            check(f"max {key} difference (relative to its max {scale:.3g})", np.abs(p1[key] - p2[key]).max() / scale, args.tol, failures)
     finish(f"parallel[{os.path.basename(args.deck)}]", failures)
 
 

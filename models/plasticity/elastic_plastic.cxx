@@ -402,6 +402,11 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
+  std::vector<OutputField> OutputFields() const override
+  {
+    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}};
+  }
+
   // Wave speed from the reference moduli (before the first step).
   PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) override
   {

@@ -89,9 +89,23 @@ static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, co
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static std::vector<ParticleOutputField> ParticleFields(PetscInt dim)
+// Model fields declared by the materials (each once).
+static std::vector<ParticleOutputField> ModelFields(const Simulation &sim)
 {
-  return {
+  std::vector<ParticleOutputField> out;
+  for (const auto &m : sim.materials)
+    for (const OutputField &f : m->OutputFields()) {
+      bool seen = false;
+      for (const auto &o : out) seen = seen || std::string(o.out_name) == f.name;
+      if (!seen) out.push_back({f.name, f.name, f.bs, f.bs, f.is_int, false});
+    }
+  return out;
+}
+
+static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
+{
+  const PetscInt                   dim = sim.grid.dim;
+  std::vector<ParticleOutputField> fields = {
     {DMSwarmPICField_coor, "coordinates", dim, dim, false, false},
     {field::velocity, "velocity", dim, 3, false, false},
     {field::position0, "displacement", dim, 3, false, true},
@@ -104,15 +118,18 @@ static std::vector<ParticleOutputField> ParticleFields(PetscInt dim)
     {field::material, "material", 1, 1, true, false},
     {DMSwarmField_pid, "id", 1, 1, true, false, true},
   };
+  for (const auto &f : ModelFields(sim)) fields.push_back(f);
+  return fields;
 }
 
-static std::string XdmfParticleGrid(const std::string &file, PetscInt dim, PetscInt64 n, PetscReal time)
+static std::string XdmfParticleGrid(const Simulation &sim, const std::string &file, PetscInt64 n, PetscReal time)
 {
+  const PetscInt     dim = sim.grid.dim;
   std::ostringstream s;
   s << "    <Grid Name=\"particles\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
   s << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n";
   s << "      <Geometry GeometryType=\"" << (dim == 2 ? "XY" : "XYZ") << "\">\n        <DataItem Dimensions=\"" << n << " " << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/particles/coordinates</DataItem>\n      </Geometry>\n";
-  for (const auto &f : ParticleFields(dim)) {
+  for (const auto &f : ParticleFields(sim)) {
     if (f.swarm_name == DMSwarmPICField_coor) continue;
     const char *type = f.out_bs == 1 ? "Scalar" : (f.out_bs == 3 ? "Vector" : "Tensor");
     s << "      <Attribute Name=\"" << f.out_name << "\" AttributeType=\"" << type << "\" Center=\"Node\">\n        <DataItem Dimensions=\"" << n;
@@ -172,7 +189,7 @@ static PetscErrorCode WriteCollection(Simulation &sim, const char name[], bool g
     for (const auto &r : records) {
       char file[64];
       std::snprintf(file, sizeof(file), "%s_%06d.h5", grid ? "grid" : "particles", (int)r.step);
-      out << (grid ? XdmfGridGrid(sim, file, r.time) : XdmfParticleGrid(file, sim.grid.dim, r.particles, r.time));
+      out << (grid ? XdmfGridGrid(sim, file, r.time) : XdmfParticleGrid(sim, file, r.particles, r.time));
     }
     out << "  </Grid>\n </Domain>\n</Xdmf>\n";
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
@@ -193,7 +210,7 @@ PetscErrorCode WriteOutput(Simulation &sim)
   std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
-  for (const auto &f : ParticleFields(sim.grid.dim)) PetscCall(WriteParticleField(sim, viewer, f, n));
+  for (const auto &f : ParticleFields(sim)) PetscCall(WriteParticleField(sim, viewer, f, n));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/particles", "time", PETSC_REAL, &sim.time));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/particles", "step", PETSC_INT, &sim.step));
