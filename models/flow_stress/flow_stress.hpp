@@ -20,7 +20,7 @@ struct ReturnSettings {
   YieldType     yield = YieldType::VonMises;
   GTNParameters gtn;
   PetscReal     tolerance = 1e-10; // relative tolerance of the Newton iterations on sigma_f
-  PetscInt      max_iterations = 50;
+  PetscInt      max_iterations = 100;
 };
 
 // The flow-stress family as the stress update sees it: one virtual call per chunk.

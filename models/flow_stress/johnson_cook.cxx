@@ -1,9 +1,10 @@
 // Johnson-Cook flow stress (paper eq. 10; Johnson & Cook 1983):
 //   sigma_f = [A + B eps_p^n] [1 + C ln(rate*)] [1 - T*^m],  rate* = eps_p_dot / rate0,
 //   T* = (T - T_r) / (T_m - T_r) clamped to [0, 1], T_m from the material's melt model.
-// Rate regularisation (NOTES eq. 10, models.md 2.10): the plastic rate is floored at min_rate
-// (-MAT_flow_stress_min_rate, default 1e-3 /s) before the logarithm, so the rate factor is
-// continuous and, for min_rate > rate0 exp(-1/C), positive. sigma_f = 0 at and above melt.
+// Rate regularisation (NOTES eq. 10, models.md 2.10): the logarithm takes the smoothly floored rate
+// sqrt(eps_p_dot^2 + min_rate^2) (-MAT_flow_stress_min_rate, default 1e-3 /s): smooth, equal to the
+// literal law well above the floor (1e-6 relative at 1 /s), and for min_rate > rate0 exp(-1/C) the
+// factor stays positive. sigma_f = 0 at and above melt.
 #include "flow_stress.hpp"
 #include <cmath>
 
@@ -19,9 +20,10 @@ public:
     const PetscReal power  = eps > 0 ? std::pow(eps, n) : 0;
     const PetscReal strain = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
-    const PetscReal rate_star = x.plastic_strain_rate / rate0;
-    const PetscReal rate   = 1 + C * std::log(rate_star);
-    const PetscReal d_rate = C / x.plastic_strain_rate;
+    PetscReal       slope;
+    const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
+    const PetscReal rate      = 1 + C * std::log(effective / rate0);
+    const PetscReal d_rate    = C / effective * slope;
     PetscReal       homologous = (x.temperature - room_temperature) / (x.melt_temperature - room_temperature);
     PetscReal       thermal = 1, d_thermal = 0;
     if (homologous >= 1) thermal = 0;

@@ -57,7 +57,8 @@ public:
   inline State Terms(const FlowPoint &x) const
   {
     State           st;
-    const PetscReal T = x.temperature, mu = x.shear_modulus, r = x.plastic_strain_rate;
+    PetscReal       r_slope; // smooth floor of the rate (flow_point.hpp); Evaluate chains d_rate with it
+    const PetscReal T = x.temperature, mu = x.shear_modulus, r = SmoothRateFloor(x.plastic_strain_rate, min_rate, &r_slope);
     if (sigma_i > 0) st.Si = Factor(T, mu, r, g0i, edot0i, p_i, q_i);
     else st.Si = Scale{0, 0, 0};
     st.Se                = Factor(T, mu, r, g0e, edot0e, p_e, q_e);
@@ -112,7 +113,9 @@ public:
     const PetscReal ratio = x.shear_modulus / mu0;
     y.sigma         = sigma_a + ratio * (st.Si.S * sigma_i + st.Se.S * e.se);
     y.d_strain      = ratio * st.Se.S * e.d_de;
-    y.d_rate        = ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
+    PetscReal slope;
+    SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
+    y.d_rate        = slope * ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
     y.d_temperature = ratio * (st.Si.d_T * sigma_i + st.Se.d_T * e.se + st.Se.S * e.d_T);
   }
 

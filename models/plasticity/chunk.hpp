@@ -60,6 +60,7 @@ struct Chunk {
   PetscReal D_hat[kChunk][9];           // D in the co-rotated frame, 1/s
   int       plastic[kChunk];            // 1 if the step yielded
   int       unstable[kChunk];           // bit 1: Drucker, bit 2: loss of hyperbolicity
+  int       failed_point = -1;          // set by a return mapping that did not converge (for the message)
 };
 
 } // namespace burst

@@ -149,7 +149,7 @@ struct Point {
 template <class Flow>
 inline bool MatrixStrain(const Flow &flow, const Chunk &c, int k, PetscReal one_minus_f, PetscReal W, PetscReal tol, PetscInt max_it, PetscReal &de, FlowValue &y, PetscReal &H)
 {
-  auto rate_slope = [&](PetscReal e, const FlowValue &v) { return v.d_strain + (e / c.dt > flow.min_rate ? v.d_rate / c.dt : 0.0); };
+  auto rate_slope = [&](PetscReal, const FlowValue &v) { return v.d_strain + v.d_rate / c.dt; };
   if (!(W > 0)) {
     de = 0;
     flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
@@ -330,7 +330,10 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
       P.growth = 0;
       ok       = gtn::Solve(flow, c, k, gtn, P, hydrostatic, tol, max_it, st);
     }
-    if (!ok || !std::isfinite(st.dv) || !std::isfinite(st.dq)) return PETSC_ERR_NOT_CONVERGED;
+    if (!ok || !std::isfinite(st.dv) || !std::isfinite(st.dq)) {
+      c.failed_point = k;
+      return PETSC_ERR_NOT_CONVERGED;
+    }
     // write back
     if (q_trial > 0 && !hydrostatic) {
       const PetscReal ratio = st.q / q_trial;

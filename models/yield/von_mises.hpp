@@ -2,9 +2,9 @@
 // dependent flow stress. With q_tr = sqrt(3/2 s_tr:s_tr) and the unknown plastic strain increment
 // de (= sqrt(2/3) dgamma), solve by Newton (models.md 4.7)
 //   g(de) = q_tr - 3 mu de - sigma_f(eps_p + de, de/dt, T) = 0,
-//   g'    = -3 mu - (d sigma_f/d eps_p + d sigma_f/d eps_p_dot / dt),
-// then s = s_tr (1 - 3 mu de / q_tr). The plastic rate, floored at the model's min_rate, feeds the
-// flow stress (not the total rate: models.md 2.2).
+//   g'    = -3 mu - (d sigma_f/d eps_p + d sigma_f/d eps_p_dot / dt), safeguarded by a bracket,
+// then s = s_tr (1 - 3 mu de / q_tr). The plastic rate de/dt feeds the flow stress (not the total
+// rate: models.md 2.2); each model floors it smoothly (SmoothRateFloor).
 #pragma once
 #include "../plasticity/chunk.hpp"
 #include "flow_point.hpp"
@@ -16,8 +16,8 @@ namespace burst {
 template <class Flow>
 inline FlowPoint MakeFlowPoint(const Flow &flow, const Chunk &c, int k, PetscReal de)
 {
-  const PetscReal rate = de / c.dt;
-  return FlowPoint{c.plastic_strain[k] + de, de, rate > flow.min_rate ? rate : flow.min_rate, c.temperature[k], c.melt_temperature[k], c.shear_modulus[k], c.density[k], c.history[k]};
+  (void)flow;
+  return FlowPoint{c.plastic_strain[k] + de, de, de / c.dt, c.temperature[k], c.melt_temperature[k], c.shear_modulus[k], c.density[k], c.history[k]};
 }
 
 // Returns the deviatoric stress of every point of the chunk onto the yield surface.
@@ -45,20 +45,26 @@ PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, P
       c.plastic_strain_rate[k] = 0;
       continue;
     }
-    // Newton on de from the elastic-predictor bound de <= q_trial / (3 mu)
-    PetscReal de = 0, g = q_trial - y.sigma;
+    // Safeguarded Newton on de: g decreases monotonically from g(0) > 0 to g(q_trial/(3 mu)) < 0,
+    // so a bracket [lo, hi] is kept and a step leaving it is replaced by bisection (the rate term of
+    // JC/MTS has a kink at the rate floor, where plain Newton can cycle).
+    PetscReal de = 0, g = q_trial - y.sigma, lo = 0, hi = q_trial / (3 * mu);
     PetscInt  it = 0;
     for (; it < max_iterations; ++it) {
-      const PetscReal slope = 3 * mu + y.d_strain + (de / dt > flow.min_rate ? y.d_rate / dt : 0.0);
-      PetscReal       next  = de + g / slope;
-      if (next < 0) next = 0.5 * de;
-      if (next > q_trial / (3 * mu)) next = 0.5 * (de + q_trial / (3 * mu));
+      const PetscReal slope = 3 * mu + y.d_strain + y.d_rate / dt;
+      PetscReal       next  = slope > 0 ? de + g / slope : -1;
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       de = next;
       flow.Evaluate(MakeFlowPoint(flow, c, k, de), y);
       g = q_trial - 3 * mu * de - y.sigma;
-      if (std::fabs(g) <= tolerance * y.sigma) break;
+      if (g > 0) lo = de;
+      else hi = de;
+      if (std::fabs(g) <= tolerance * y.sigma || hi - lo <= 1e-15 * hi) break;
     }
-    if (it == max_iterations || !std::isfinite(de)) return PETSC_ERR_NOT_CONVERGED;
+    if (it == max_iterations || !std::isfinite(de)) {
+      c.failed_point = k;
+      return PETSC_ERR_NOT_CONVERGED;
+    }
     const PetscReal scale = 1 - 3 * mu * de / q_trial;
     for (int a = 0; a < 9; ++a) s[a] *= scale;
     flow.UpdateHistory(MakeFlowPoint(flow, c, k, de), de, c.history[k]);
@@ -68,7 +74,7 @@ PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, P
     c.plastic_strain_rate[k]  = de / dt;
     c.flow_stress[k]          = y.sigma;
     c.hardening[k]            = y.d_strain;
-    c.rate_hardening[k]       = de / dt > flow.min_rate ? y.d_rate / dt : 0.0;
+    c.rate_hardening[k]       = y.d_rate / dt;
     c.thermal_softening[k]    = y.d_temperature;
     c.equivalent_stress[k]    = q_trial * scale;
   }

@@ -60,7 +60,7 @@ public:
   PetscErrorCode View(PetscViewer) const override { return PETSC_SUCCESS; }
 };
 
-// sigma_f = (A + B eps^n)(1 + C ln(rate)), rate floored at min_rate by the caller; history[0]
+// sigma_f = (A + B eps^n)(1 + C ln(rate)), rate smoothly floored at min_rate (SmoothRateFloor); history[0]
 // accumulates the plastic strain increments (checks that the return calls UpdateHistory with de).
 class TestRateFlow final : public FlowStressModel<TestRateFlow> {
 public:
@@ -68,10 +68,12 @@ public:
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
     const PetscReal e = x.plastic_strain > 0 ? x.plastic_strain : 0, pw = e > 0 ? std::pow(e, n) : 0;
-    const PetscReal rate = 1 + C * std::log(x.plastic_strain_rate);
+    PetscReal       slope;
+    const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
+    const PetscReal rate = 1 + C * std::log(effective);
     y.sigma              = (A + B * pw) * rate;
     y.d_strain           = e > 0 ? B * n * pw / e * rate : 0;
-    y.d_rate             = (A + B * pw) * C / x.plastic_strain_rate;
+    y.d_rate             = (A + B * pw) * C / effective * slope;
     y.d_temperature      = 0;
   }
   inline void    UpdateHistory(const FlowPoint &, PetscReal de, PetscReal *h) const { h[0] += de; }
