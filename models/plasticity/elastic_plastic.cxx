@@ -345,7 +345,7 @@ public:
         const PetscErrorCode ierr = flow->Return(c, settings);
         if (ierr && c.failed_point >= 0) {
           const int k = c.failed_point;
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "Material %s, t = %g s, particle index %" PetscInt_FMT ": return mapping failed at plastic strain %g, porosity %g, trial pressure %g Pa, trial q %g Pa (rate %g 1/s), T %g K, mu %g Pa, K %g Pa, density %g\n", Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k], (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k]));
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "Material %s, t = %g s, particle index %" PetscInt_FMT ": return mapping failed at plastic strain %.17g, porosity %.17g, trial pressure %.17g Pa, trial q %.17g Pa (rate %g 1/s), T %.17g K, mu %.17g Pa, K %.17g Pa, density %.17g, dt %.17g s\n", Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k], (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k], (double)c.dt));
         }
         PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
       }

@@ -285,6 +285,58 @@ inline bool Solve(const Flow &flow, const Chunk &c, int k, const GTNParameters &
   return std::fabs(st.Phi) <= 100 * tol && std::fabs(st.R2) <= 100 * tol * st.R2_scale;
 }
 
+// Last resort when the 2x2 Newton stalls: the flow direction is frozen at the trial state
+// (associated flow, dv = lambda dPhi/dsigma_m, dq = lambda dPhi/dq) and Phi(lambda) = 0 is solved
+// by a bracketed secant/bisection (Illinois) on [0, lambda_max], where the box of (dv, dq) ends.
+// This happens at first yield from a trial state a hair outside the surface: the Johnson-Cook
+// hardening B eps^n has an infinite slope at eps_p = 0, so the Newton linearisation is useless there
+// while the increments are tiny and the frozen normal is exact to their order.
+template <class Flow>
+inline bool SolveAlongTrialNormal(const Flow &flow, const Chunk &c, int k, const GTNParameters &g, const Point &P, PetscReal tol, PetscInt max_it, State &st)
+{
+  const PetscReal inner_tol = PetscMax(1e-2 * tol, 1e-14);
+  State           s0;
+  if (!Evaluate(flow, c, k, g, P, inner_tol, max_it, s0) || !(s0.Phi > 0)) return false;
+  const PetscReal sf = s0.y.sigma, x = 1.5 * g.q2 * P.sigma_m_tr / sf;
+  PetscReal       C, S, dS;
+  ClippedCosh(x, C, S, dS);
+  const PetscReal n_v = 3 * g.q1 * g.q2 * s0.fs * S / sf, n_q = 2 * P.q_tr / (sf * sf);
+  // largest lambda inside the box: dq <= q_tr/(3 mu), dv within [0, sigma_m_tr/K] (or closure)
+  PetscReal lambda_max = n_q > 0 ? P.q_tr / (3 * P.mu) / n_q : PETSC_MAX_REAL;
+  if (n_v != 0) {
+    PetscReal dv_end = P.sigma_m_tr / P.K;
+    if (P.growth > 0 && dv_end < 0) dv_end = PetscMax(dv_end, -P.f_n / (1 - P.f_n));
+    if (dv_end / n_v > 0) lambda_max = PetscMin(lambda_max, dv_end / n_v);
+  }
+  if (!(lambda_max > 0) || lambda_max >= PETSC_MAX_REAL) return false;
+  auto at = [&](PetscReal lambda, State &x_state) {
+    x_state    = State();
+    x_state.dv = lambda * n_v;
+    x_state.dq = lambda * n_q;
+    return Evaluate(flow, c, k, g, P, inner_tol, max_it, x_state);
+  };
+  State hi_state;
+  if (!at(lambda_max, hi_state) || !(hi_state.Phi < 0)) return false;
+  PetscReal a = 0, b = lambda_max, fa = s0.Phi, fb = hi_state.Phi;
+  int       side = 0;
+  for (PetscInt it = 0; it < 8 * max_it; ++it) {
+    PetscReal lambda = b - fb * (b - a) / (fb - fa);
+    if (!(lambda > a && lambda < b)) lambda = 0.5 * (a + b);
+    if (!at(lambda, st)) return false;
+    if (std::fabs(st.Phi) <= tol || b - a <= 1e-15 * b) return std::fabs(st.Phi) <= 100 * tol;
+    if (st.Phi > 0) {
+      a = lambda, fa = st.Phi;
+      if (side == 1) fb *= 0.5; // Illinois: keep the secant from stalling on one end
+      side = 1;
+    } else {
+      b = lambda, fb = st.Phi;
+      if (side == -1) fa *= 0.5;
+      side = -1;
+    }
+  }
+  return false;
+}
+
 } // namespace gtn
 
 // Full GTN return for every point of the chunk. Same contract as VonMisesReturn, plus: reads
@@ -330,6 +382,7 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
       P.growth = 0;
       ok       = gtn::Solve(flow, c, k, gtn, P, hydrostatic, tol, max_it, st);
     }
+    if (!ok && !hydrostatic) ok = gtn::SolveAlongTrialNormal(flow, c, k, gtn, P, tol, max_it, st);
     if (!ok || !std::isfinite(st.dv) || !std::isfinite(st.dq)) {
       c.failed_point = k;
       return PETSC_ERR_NOT_CONVERGED;

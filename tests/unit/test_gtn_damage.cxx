@@ -879,3 +879,32 @@ TEST(Damage, HancockMacKenzieAccumulatesEq21)
   EXPECT_EQ(c->damage[5], D0);
   EXPECT_EQ(c->fracture_strain[6], 1e-6);
 }
+
+// Regression: a first-yield point of the radially expanding 4340 block (scripts/bench.py --stress-only,
+// 40^3 cells, t = 3.3 us) on which the GTN return once failed to converge: eps_p = 0, f = 0.0047,
+// trial pressure -448.6 MPa (tension), trial q = 707.6 MPa, Mie-Gruneisen tangent K = 98.8 GPa,
+// mu = 80 GPa, dt = 1.77e-6 s (values as printed by the failure message). The trial state lies a
+// hair outside the surface, so the increments are tiny. The returned state must be on the surface.
+TEST(GTNReturn, FirstYieldTriaxialTension)
+{
+  ScopedOptions opt;
+  auto          flow = JohnsonCook4340(opt, "gtnfirst");
+  ASSERT_TRUE(flow);
+  ReturnSettings settings;
+  settings.yield = YieldType::GTN;
+  auto c         = std::make_unique<Chunk>();
+  c->n           = 1;
+  c->dt          = 1.7742713569209196e-06;
+  const M3 d     = Deviatoric(1, -0.5, -0.5, 0, 0, 0);
+  SetPoint(*c, 0, M3(d * (707597261.99081635 / Equivalent(d.data()))), -448588952.71853018, 98805434767.914093, 80e9, 0.0046926562226440984, 0, 298.93219813692934, 1793);
+  c->density[0] = 7794.8219788783354;
+  const PetscErrorCode ierr = flow->Return(*c, settings);
+  ASSERT_EQ(ierr, 0);
+  GTNRef       ref;
+  const double sf = c->flow_stress[0], sm = -c->pressure[0], q = Equivalent(c->deviator[0]);
+  const double f1 = 0.0046926562226440984 + (1 - 0.0046926562226440984) * c->trace_plastic_strain[0];
+  const double phi = ref.Phi(sm, q, sf, f1);
+  std::printf("[ measured ] first-yield triaxial tension: de %.3e, dv %.3e, sigma_f %.4e Pa, |Phi| %.2e (tolerance 1e-9)\n", c->delta_plastic_strain[0], c->trace_plastic_strain[0], sf, std::fabs(phi));
+  EXPECT_EQ(c->plastic[0], 1);
+  EXPECT_LE(std::fabs(phi), 1e-9);
+}
