@@ -46,6 +46,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
   PetscCall(CreateGrid(sim));
+  PetscCall(FragmentsSetUp(sim));
   // 2. Materials, load curves and the geometry objects that seed particles
   PetscCall(CreateMaterials(sim));
   PetscCall(ReadLoadCurves(sim));
@@ -99,8 +100,10 @@ static PetscErrorCode Run(Simulation &sim)
     sim.wall_stepping += t1 - t0;
     const bool last = !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
+    PetscCall(FragmentsMonitor(sim));
     if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
       PetscCall(PetscLogStagePush(sim.stage_output));
+      PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
       PetscCall(WriteOutput(sim));
       PetscCall(PetscLogStagePop());
     }

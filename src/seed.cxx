@@ -241,7 +241,9 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscCall(fields.Get(field::load_curve, &curve));
   PetscCall(fields.Get(field::material, &mat));
   PetscReal *q;
+  PetscInt  *fragment;
   PetscCall(fields.Get(field::bulk_viscosity, &q));
+  PetscCall(fields.Get(field::fragment, &fragment));
   for (PetscInt p = 0; p < n; ++p) {
     const Geometry &geo = *sim.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
@@ -258,7 +260,8 @@ PetscErrorCode SeedParticles(Simulation &sim)
     c[p]     = 0;
     e[p]     = 0;
     curve[p] = -1;
-    q[p]     = 0;
+    q[p]        = 0;
+    fragment[p] = -1;
     for (PetscInt d = 0; d < dim; ++d) {
       x[p * dim + d]    = points[p].x[d];
       X0[p * dim + d]   = points[p].x[d];

@@ -7,6 +7,7 @@
 #include <petscdmda.h>
 #include <petscdmswarm.h>
 #include <memory>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,7 @@ inline constexpr const char *traction_area0  = "traction_area0";    // m^2, bs d
 inline constexpr const char *load_curve      = "load_curve";        // int: index of the pressure load curve, -1 none
 inline constexpr const char *material        = "material";          // int: material id
 inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
+inline constexpr const char *fragment        = "fragment";          // int: fragment id of intact particles, -1 otherwise
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
@@ -171,6 +173,13 @@ PetscErrorCode MigrateParticles(Simulation &sim);
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
 
 PetscErrorCode TakeStep(Simulation &sim);
+
+// Fragments (src/fragments.cxx)
+PetscErrorCode FragmentsSetUp(Simulation &sim);
+PetscErrorCode FragmentsMonitor(Simulation &sim);
+PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table);
+PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out);
+bool           SwarmHasModelField(const Simulation &sim, const char name[]);
 PetscErrorCode RunPointDriver(Simulation &sim);
 
 // Output and diagnostics (src/io/)
@@ -181,6 +190,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force);
 PetscErrorCode WriteSummary(Simulation &sim);
 struct EnergyReport {
   PetscReal kinetic, internal, external_work, removed, total, balance_error;
+  PetscReal failure_energy; // elastic energy released by failure responses (part of internal)
   PetscReal momentum[3];
   PetscReal mass;
 };

@@ -38,6 +38,7 @@ PetscErrorCode CreateSwarm(Simulation &sim)
   PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::load_curve, 1, PETSC_INT));
   PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
   PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::bulk_viscosity, 1, PETSC_REAL));
+  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::fragment, 1, PETSC_INT));
   for (auto &m : sim.materials) PetscCall(m->RegisterFields(sw));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
   // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).

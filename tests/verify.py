@@ -231,6 +231,28 @@ def plate_impact(args):
     finish("plate_impact", failures)
 
 
+def fragments(args):
+    """The fragment finder on separate bodies: the count, and each fragment's mass and centroid
+    against the seeded bodies (the centroid of a disk is its centre), on 1 or 2 ranks."""
+    failures = []
+    with tempfile.TemporaryDirectory() as out:
+        s = run(args.burst, os.path.join(ROOT, args.deck), out, ["-fragments", *args.extra.split()], ranks=args.ranks)
+        with open(os.path.join(out, "fragments.csv")) as f:
+            rows = list(csv.DictReader(f))
+    centroids = sorted((round(float(r["centroid_x"]), 6), round(float(r["centroid_y"]), 6), round(float(r["centroid_z"]), 6)) for r in rows)
+    expected = sorted(tuple(float(v) for v in c.split(",")) for c in args.centroids.split(";"))
+    print(f"fragments of {os.path.basename(args.deck)} on {args.ranks} rank(s): {s['fragment_count']} (expected {len(expected)}), "
+          f"masses {[round(float(r['mass']), 4) for r in rows]} kg, intact mass {s['intact_mass']:.4f} of {s['mass']:.4f} kg")
+    ok = s["fragment_count"] == len(expected) and len(rows) == len(expected)
+    print(f"  count: {'OK' if ok else 'FAIL'}")
+    if not ok:
+        finish("fragments", ["count"])
+    err = max(max(abs(a - b) for a, b in zip(c, e)) for c, e in zip(centroids, expected))
+    check("max centroid error (m)", err, args.tol, failures)
+    check("intact mass - total mass (relative)", abs(s["intact_mass"] - s["mass"]) / s["mass"], 1e-12, failures)
+    finish("fragments", failures)
+
+
 def read_particles(out):
     files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
     with h5py.File(os.path.join(out, files[-1]), "r") as f:
@@ -310,13 +332,19 @@ def main():
     ld.add_argument("--tol", type=float, default=2e-2)
     pi = sub.add_parser("plate_impact")
     pi.add_argument("--extra", default="")
+    fr = sub.add_parser("fragments")
+    fr.add_argument("--deck", default="tests/decks/three_bodies.opts")
+    fr.add_argument("--ranks", type=int, default=1)
+    fr.add_argument("--centroids", default="0.25,0.25,0;0.7,0.3,0;0.5,0.725,0")
+    fr.add_argument("--tol", type=float, default=1e-3)
+    fr.add_argument("--extra", default="")
     k = sub.add_parser("deck")
     k.add_argument("--deck", required=True)
     k.add_argument("--steps", type=int, default=5)
     k.add_argument("--ranks", type=int, default=1)
     k.add_argument("--extra", default="")
     args = p.parse_args()
-    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact}[args.cmd](args)
+    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact, "fragments": fragments}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -8,7 +8,11 @@
 //   4. Yield test and return (von Mises radial return or GTN), inlined with the flow-stress model.
 //   5. Porosity (eqs. 15-17), damage (eq. 20/21), temperature (eq. 18 and the Mie-Gruneisen
 //      isentropic term), stability checks (eqs. 23-24).
-//   6. Failure tags (melt, TEPLA-F, critical porosity, stability, sigma_f <= 0), with the time.
+//   6. Failure tags (melt, TEPLA-F, critical porosity, stability, sigma_f <= 0), with the time, and
+//      the failure response of failed points (-MAT_failure_response, applied from the failing step
+//      on: models.md 5.9 and pitfall 15): none, zero_stress, no_tension (keep compressive pressure),
+//      no_shear (keep the pressure). The elastic energy a response releases is accumulated in the
+//      failure_energy field (J) so the energy balance can report it.
 //   7. sigma_{n+1} = R_{n+1} (s - p I) R_{n+1}^T; stress work; wave speed sqrt((K + 4 mu/3)/rho).
 // Particles are processed in chunks of kChunk; each sub-model is called once per chunk.
 #include "families.hpp"
@@ -37,6 +41,7 @@ constexpr const char *kFailed            = "failed";        // int: failure crit
 constexpr const char *kFailureTime       = "failure_time";  // s
 constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
 constexpr const char *kPlasticDilatation = "plastic_dilatation"; // accumulated tr(eps_p) (GTN), -
+constexpr const char *kFailureEnergy     = "failure_energy";     // elastic energy released by the failure response, J
 
 // Registers the model's fields once per swarm (several elastic_plastic materials share them); the
 // mark is composed with the swarm, so it lives and dies with it.
@@ -74,6 +79,8 @@ inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stre
 }
 
 enum FailureBits : int { FailMelt = 1, FailTepla = 2, FailPorosity = 4, FailStability = 8, FailStrength = 16 };
+enum class FailureResponse : int { None = 0, ZeroStress = 1, NoTension = 2, NoShear = 3 };
+const char *const kResponseNames[] = {"none", "zero_stress", "no_tension", "no_shear"};
 const char *const kFailureNames[] = {"melt", "tepla", "porosity", "stability", "strength"};
 } // namespace
 
@@ -96,7 +103,8 @@ public:
   PetscReal porosity_mean = 0, porosity_deviation = 0, damage_mean = 0, damage_deviation = 0;
   PetscInt  seed = 1;
   // Failure
-  int       failure_criteria = FailMelt;
+  int             failure_criteria = FailMelt;
+  FailureResponse failure_response = FailureResponse::None;
   PetscReal tepla_critical_porosity = 0.3; // f_c of eq. 22 and of the critical-porosity criterion
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
@@ -153,6 +161,11 @@ public:
           PetscCall(PetscFree(names[i]));
         }
       }
+    }
+    {
+      int response = (int)failure_response;
+      PetscCall(OptionsChoice(PetscOptionsObject, "-failure_response", "What a failed particle carries: none, zero_stress, no_tension (compressive pressure only), no_shear (pressure only)", kResponseNames, 4, &response, nullptr));
+      failure_response = (FailureResponse)response;
     }
     PetscCall(PetscOptionsReal("-failure_porosity", "Critical porosity of TEPLA-F (eq. 22) and of the porosity criterion (-)", "", tepla_critical_porosity, &tepla_critical_porosity, nullptr));
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -213,7 +226,7 @@ public:
     PetscFunctionBeginUser;
     PetscCall(FieldsRegistered(swarm, &registered));
     if (registered) PetscFunctionReturn(PETSC_SUCCESS);
-    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime};
+    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy};
     for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, 1, PETSC_REAL));
     PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kRotation, 9, PETSC_REAL));
     PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
@@ -227,11 +240,12 @@ public:
     SwarmAccess       fields(swarm);
     const PetscInt   *material;
     const PetscInt64 *pid;
-    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation;
+    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released;
     PetscInt         *failed, *unstable;
     PetscFunctionBeginUser;
     PetscCall(fields.Get("material", &material));
     PetscCall(fields.Get(kPlasticDilatation, &dilatation));
+    PetscCall(fields.Get(kFailureEnergy, &released));
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
@@ -246,7 +260,7 @@ public:
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
       if (material[p] != id) continue;
-      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = 0;
+      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = 0;
       t_fail[p]                     = -1;
       failed[p] = unstable[p] = 0;
       const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
@@ -263,12 +277,13 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
     SwarmAccess fields(mp.swarm);
-    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation;
+    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released;
     PetscInt   *failed, *unstable;
     Chunk       c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(fields.Get(kPlasticDilatation, &dilatation));
+    PetscCall(fields.Get(kFailureEnergy, &released));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
     PetscCall(fields.Get(kPorosity, &f));
@@ -380,12 +395,27 @@ public:
         if (c.unstable[k]) bits |= FailStability;
         if (c.flow_stress[k] <= 0) bits |= FailStrength;
         bits &= failure_criteria;
+        bool newly_failed = false;
         if (bits && !failed[q]) {
-          failed[q] = bits;
-          t_fail[q] = mp.time;
+          failed[q]    = bits;
+          t_fail[q]    = mp.time;
+          newly_failed = true;
         }
         Mat3 s_hat = Mat3Map(c.deviator[k]);
         s_hat.diagonal().array() -= c.pressure[k];
+        if (failed[q] && failure_response != FailureResponse::None) {
+          // the response: drop what the failed point cannot carry; count the elastic energy that goes
+          // (q^2/(6 mu) + p^2/(2 K) per unit volume for the dropped parts)
+          const PetscReal q_eq = c.equivalent_stress[k], p = c.pressure[k], mu = c.shear_modulus[k], K = c.bulk_modulus[k];
+          PetscReal       dropped = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
+          const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
+          if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
+          if (newly_failed) released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release
+          s_hat.setZero();
+          if (keep_pressure) s_hat.diagonal().array() -= p;
+          Mat3Map(c.deviator[k]).setZero();
+          c.equivalent_stress[k] = 0;
+        }
         Mat3Map         sigma(mp.stress + 9 * q);
         const Mat3      sigma_old = sigma;
         sigma                     = R_new[k] * s_hat * R_new[k].transpose();
@@ -409,7 +439,7 @@ public:
 
   std::vector<OutputField> OutputFields() const override
   {
-    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}};
+    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}};
   }
 
   // Wave speed from the reference moduli (before the first step).

@@ -41,8 +41,16 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   }
   local[2] = sim.diag.external_work;
   local[7] = sim.diag.removed_energy;
+  PetscReal released_local = 0, released = 0;
+  if (SwarmHasModelField(sim, "failure_energy")) {
+    const PetscReal *released_p;
+    PetscCall(fields.Get("failure_energy", &released_p));
+    for (PetscInt p = 0; p < n; ++p) released_local += released_p[p];
+  }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 8, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&released_local, &released, 1, MPIU_REAL, MPI_SUM, sim.comm));
+  r.failure_energy = released;
   r.kinetic       = global[0];
   r.internal      = global[1];
   r.external_work = global[2];
@@ -96,7 +104,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     const std::string path = sim.output_dir + "/monitor.csv";
     csv                    = std::fopen(path.c_str(), "w");
     PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
-    std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles");
+    std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     std::fprintf(csv, "\n");
@@ -132,6 +140,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   if (!sim.rank && csv) {
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
+    std::fprintf(csv, ",%.12e", (double)r.failure_energy);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.track_pid >= 0)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
@@ -207,6 +216,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << "  \"displacement_error_max\": " << max << ",\n";
     s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.diag.max_error_displacement, rms) << ",\n";
   }
+  s << "  \"failure_energy\": " << r.failure_energy << ",\n";
+  PetscCall(FragmentsSummary(sim, s));
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
   s << "  \"particle_steps_per_second\": " << rate << ",\n";

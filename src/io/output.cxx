@@ -117,6 +117,7 @@ static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
     {field::internal_energy, "internal_energy", 1, 1, false, false},
     {field::material, "material", 1, 1, true, false},
     {DMSwarmField_pid, "id", 1, 1, true, false, true},
+    {field::fragment, "fragment", 1, 1, true, false},
   };
   for (const auto &f : ModelFields(sim)) fields.push_back(f);
   return fields;

@@ -1,0 +1,382 @@
+// Fragments: the connected sets of intact particles, found in parallel, and the Grady-Hightower
+// estimate of their number (paper eqs. 25-26).
+//
+// Two intact particles are neighbours when |x_i - x_j| < factor (s_i + s_j)/2, with s = V^{1/dim} the
+// current particle size (2-D volumes are per metre of thickness) and factor = -fragments_distance_factor,
+// so the criterion follows the deformation. Algorithm:
+//   1. each rank joins its own particles (union-find over a hash grid of cell size factor s_max);
+//   2. particles within one cell of the rank's owned box are exchanged (MPI_Allgatherv) and every
+//      rank records the joins between its particles and the other ranks' (label pairs);
+//   3. rank 0 merges the labels of all ranks (union-find on the pairs) and broadcasts the fragment of
+//      each label; fragment sums (mass, momentum, first moment) are reduced to rank 0.
+// The modelled region is what is counted: a fragment cut by a symmetry plane is one fragment of the
+// quarter model. Failed particles (field `failed` != 0) are not part of any fragment.
+#include "simulation.hpp"
+#include "swarm_access.hpp"
+#include "util.hpp"
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <unordered_map>
+
+namespace burst {
+
+namespace {
+
+struct UnionFind {
+  std::vector<PetscInt> parent;
+  explicit UnionFind(PetscInt n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
+  PetscInt Find(PetscInt a)
+  {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  }
+  void Join(PetscInt a, PetscInt b)
+  {
+    a = Find(a), b = Find(b);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Hash grid over points: key of the cell of x.
+struct HashGrid {
+  PetscReal cell;
+  PetscInt  dim;
+  std::unordered_map<long long, std::vector<PetscInt>> cells;
+  long long Key(const PetscInt c[3]) const { return ((long long)(c[0] + (1 << 20)) << 42) ^ ((long long)(c[1] + (1 << 20)) << 21) ^ (long long)(c[2] + (1 << 20)); }
+  void      Cell(const PetscReal x[], PetscInt c[3]) const
+  {
+    for (int d = 0; d < 3; ++d) c[d] = d < dim ? (PetscInt)std::floor(x[d] / cell) : 0;
+  }
+  void Insert(const PetscReal x[], PetscInt id)
+  {
+    PetscInt c[3];
+    Cell(x, c);
+    cells[Key(c)].push_back(id);
+  }
+  // Calls f(id) for the points in the 3^dim cells around x.
+  template <class Fn>
+  void Near(const PetscReal x[], Fn &&f) const
+  {
+    PetscInt c[3], n[3];
+    Cell(x, c);
+    const int r2 = dim == 3 ? 1 : 0;
+    for (int k = -r2; k <= r2; ++k)
+      for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+          n[0]          = c[0] + i;
+          n[1]          = c[1] + j;
+          n[2]          = c[2] + k;
+          const auto it = cells.find(Key(n));
+          if (it != cells.end())
+            for (PetscInt id : it->second) f(id);
+        }
+  }
+};
+
+struct FragmentOptions {
+  PetscBool enabled         = PETSC_FALSE;
+  PetscReal distance_factor = 1.5;
+  PetscInt  min_particles   = 4;
+  // Grady-Hightower (eqs. 25-26)
+  PetscBool grady = PETSC_FALSE;
+  PetscReal center[3] = {0, 0, 0}, radius = 0, sector = 360;
+  PetscReal density = 0, youngs_modulus = 0, toughness = 0, specific_heat = 0, expansion = 0, diffusivity = 0, yield_stress = 0, shear_rate = 0;
+};
+FragmentOptions options;
+PetscReal       fracture_velocity = -1, fracture_time = -1; // measured at the first failure
+PetscInt64      last_count = 0;
+PetscReal       largest_mass = 0, total_intact_mass = 0;
+} // namespace
+
+PetscErrorCode FragmentsSetUp(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Fragments and the Grady-Hightower estimate", "Fragments");
+  PetscCall(PetscOptionsBool("-fragments", "Find fragments (connected intact particles) at output steps and at the end", "", options.enabled, &options.enabled, nullptr));
+  PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", options.distance_factor, &options.distance_factor, nullptr));
+  PetscCall(CheckRange(sim.comm, "-fragments_distance_factor", options.distance_factor, 0, 10, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", options.min_particles, &options.min_particles, nullptr));
+  PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", options.grady, &options.grady, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", options.center, sim.grid.dim, nullptr));
+  PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", options.radius, &options.radius, nullptr));
+  PetscCall(PetscOptionsReal("-grady_sector", "Angle of the modelled sector (degrees; 90 for a quarter)", "", options.sector, &options.sector, nullptr));
+  PetscCall(PetscOptionsReal("-grady_density", "Density rho (kg/m^3)", "", options.density, &options.density, nullptr));
+  PetscCall(PetscOptionsReal("-grady_youngs_modulus", "Young's modulus E of Gamma_T = K_c^2/(2E) (Pa)", "", options.youngs_modulus, &options.youngs_modulus, nullptr));
+  PetscCall(PetscOptionsReal("-grady_fracture_toughness", "Fracture toughness K_c (Pa m^1/2)", "", options.toughness, &options.toughness, nullptr));
+  PetscCall(PetscOptionsReal("-grady_specific_heat", "Specific heat Cp of Gamma_S (J/(kg K))", "", options.specific_heat, &options.specific_heat, nullptr));
+  PetscCall(PetscOptionsReal("-grady_thermal_expansion", "Thermal softening/expansion coefficient alpha of Gamma_S (1/K)", "", options.expansion, &options.expansion, nullptr));
+  PetscCall(PetscOptionsReal("-grady_thermal_diffusivity", "Thermal diffusivity chi of Gamma_S (m^2/s)", "", options.diffusivity, &options.diffusivity, nullptr));
+  PetscCall(PetscOptionsReal("-grady_yield_stress", "Yield stress Y of Gamma_S (Pa)", "", options.yield_stress, &options.yield_stress, nullptr));
+  PetscCall(PetscOptionsReal("-grady_shear_rate", "Shear strain rate of Gamma_S (1/s)", "", options.shear_rate, &options.shear_rate, nullptr));
+  PetscOptionsEnd();
+  if (options.grady) {
+    const char *names[]  = {"-grady_radius", "-grady_density", "-grady_youngs_modulus", "-grady_fracture_toughness", "-grady_specific_heat", "-grady_thermal_expansion", "-grady_thermal_diffusivity", "-grady_yield_stress", "-grady_shear_rate"};
+    const PetscReal v[] = {options.radius, options.density, options.youngs_modulus, options.toughness, options.specific_heat, options.expansion, options.diffusivity, options.yield_stress, options.shear_rate};
+    for (int i = 0; i < 9; ++i) PetscCall(CheckRange(sim.comm, names[i], v[i], 0, PETSC_MAX_REAL, PETSC_TRUE));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Does the swarm carry a model field `name`? (A material lists it in OutputFields.)
+bool SwarmHasModelField(const Simulation &sim, const char name[])
+{
+  for (const auto &m : sim.materials)
+    for (const OutputField &f : m->OutputFields())
+      if (std::string(f.name) == name) return true;
+  return false;
+}
+
+// The Grady-Hightower fragmentation energies (eq. 26): tension K_c^2/(2E); shear
+// (rho Cp/alpha) (9 rho^3 Cp^2 chi^3 / (Y^3 alpha^2 gamma_dot))^(1/4).
+static void GradyEnergies(PetscReal &tension, PetscReal &shear)
+{
+  const FragmentOptions &o = options;
+  tension                  = o.toughness * o.toughness / (2 * o.youngs_modulus);
+  shear = o.density * o.specific_heat / o.expansion * std::pow(9 * std::pow(o.density, 3) * o.specific_heat * o.specific_heat * std::pow(o.diffusivity, 3) / (std::pow(o.yield_stress, 3) * o.expansion * o.expansion * o.shear_rate), 0.25);
+}
+
+// Eq. 25: N = 2 pi (rho R0 V^2 / (24 Gamma))^(1/3) for the whole cylinder.
+static PetscReal GradyCount(PetscReal gamma, PetscReal velocity) { return 2 * PETSC_PI * std::cbrt(options.density * options.radius * velocity * velocity / (24 * gamma)); }
+
+// Records the mean radial velocity of the material (mass weighted) when the first particle fails.
+PetscErrorCode FragmentsMonitor(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, "failed")) PetscFunctionReturn(PETSC_SUCCESS);
+  SwarmAccess      fields(sim.swarm);
+  const PetscInt  *failed;
+  const PetscReal *x, *v, *m;
+  PetscInt         n, dim = sim.grid.dim;
+  PetscReal        local[3] = {0, 0, 0}, global[3];
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(fields.Get("failed", &failed));
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::mass, &m));
+  for (PetscInt p = 0; p < n; ++p) {
+    if (failed[p]) local[2] += 1;
+    PetscReal r = 0, vr = 0;
+    for (PetscInt d = 0; d < 2; ++d) r += (x[dim * p + d] - options.center[d]) * (x[dim * p + d] - options.center[d]);
+    r = std::sqrt(r);
+    if (r > 0)
+      for (PetscInt d = 0; d < 2; ++d) vr += v[dim * p + d] * (x[dim * p + d] - options.center[d]) / r;
+    local[0] += m[p] * vr;
+    local[1] += m[p];
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(local, global, 3, MPIU_REAL, MPI_SUM, sim.comm));
+  if (global[2] > 0) {
+    fracture_velocity = global[0] / global[1];
+    fracture_time     = sim.time;
+    PetscCall(PetscInfo(sim.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)sim.time, (double)fracture_velocity));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
+{
+  const PetscInt dim = sim.grid.dim;
+  PetscInt       n;
+  PetscFunctionBeginUser;
+  if (!options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
+  const bool       has_failed = SwarmHasModelField(sim, "failed");
+  SwarmAccess      fields(sim.swarm);
+  const PetscReal *x, *v, *m, *V;
+  const PetscInt  *failed = nullptr;
+  PetscInt        *fragment;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(field::velocity, &v));
+  PetscCall(fields.Get(field::mass, &m));
+  PetscCall(fields.Get(field::volume, &V));
+  PetscCall(fields.Get(field::fragment, &fragment));
+  if (has_failed) PetscCall(fields.Get("failed", &failed));
+
+  // 1. local components
+  std::vector<PetscInt>  intact;
+  std::vector<PetscReal> size(n);
+  PetscReal              s_max = 0;
+  for (PetscInt p = 0; p < n; ++p) {
+    fragment[p] = -1;
+    if (failed && failed[p]) continue;
+    intact.push_back(p);
+    size[p] = std::pow(V[p], 1.0 / dim);
+    s_max   = PetscMax(s_max, size[p]);
+  }
+  PetscReal s_global;
+  PetscCallMPI(MPI_Allreduce(&s_max, &s_global, 1, MPIU_REAL, MPI_MAX, sim.comm));
+  const PetscReal factor = options.distance_factor;
+  HashGrid        grid{factor * PetscMax(s_global, 1e-300), dim, {}};
+  const PetscInt  ni = (PetscInt)intact.size();
+  for (PetscInt a = 0; a < ni; ++a) grid.Insert(x + dim * intact[a], a);
+  UnionFind uf(ni);
+  auto      close = [&](const PetscReal *xa, PetscReal sa, const PetscReal *xb, PetscReal sb) {
+    PetscReal d2 = 0;
+    for (PetscInt d = 0; d < dim; ++d) d2 += (xa[d] - xb[d]) * (xa[d] - xb[d]);
+    const PetscReal limit = 0.5 * factor * (sa + sb);
+    return d2 < limit * limit;
+  };
+  for (PetscInt a = 0; a < ni; ++a) {
+    const PetscReal *xa = x + dim * intact[a];
+    grid.Near(xa, [&](PetscInt b) {
+      if (b > a && close(xa, size[intact[a]], x + dim * intact[b], size[intact[b]])) uf.Join(a, b);
+    });
+  }
+  // local roots -> global labels
+  std::vector<PetscInt> root_index(ni, -1);
+  PetscInt              nroots = 0;
+  for (PetscInt a = 0; a < ni; ++a)
+    if (uf.Find(a) == a) root_index[a] = nroots++;
+  PetscInt offset = 0;
+  PetscCallMPI(MPI_Exscan(&nroots, &offset, 1, MPIU_INT, MPI_SUM, sim.comm));
+  if (!sim.rank) offset = 0;
+  auto label_of = [&](PetscInt a) { return offset + root_index[uf.Find(a)]; };
+
+  // 2. halo exchange: particles within one hash cell of the owned box
+  PetscInt xs[3], xm[3];
+  PetscCall(DMDAGetCorners(sim.grid.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscReal lo[3], hi[3];
+  for (PetscInt d = 0; d < dim; ++d) {
+    lo[d] = sim.grid.lower[d] + xs[d] * sim.grid.h[d];
+    hi[d] = sim.grid.lower[d] + PetscMin(xs[d] + xm[d], sim.grid.cells[d]) * sim.grid.h[d];
+  }
+  std::vector<PetscReal> halo; // x[dim], size, label per particle
+  const PetscInt         stride = dim + 2;
+  for (PetscInt a = 0; a < ni; ++a) {
+    const PetscReal *xa   = x + dim * intact[a];
+    bool             near = false;
+    for (PetscInt d = 0; d < dim; ++d) near = near || xa[d] - lo[d] < grid.cell || hi[d] - xa[d] < grid.cell;
+    if (!near) continue;
+    for (PetscInt d = 0; d < dim; ++d) halo.push_back(xa[d]);
+    halo.push_back(size[intact[a]]);
+    halo.push_back((PetscReal)label_of(a));
+  }
+  std::vector<PetscInt> pairs; // (label here, label there)
+  if (sim.size > 1) {
+    PetscMPIInt              count = (PetscMPIInt)halo.size();
+    std::vector<PetscMPIInt> counts(sim.size), displs(sim.size, 0);
+    PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm));
+    for (int r = 1; r < sim.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    std::vector<PetscReal> all(displs[sim.size - 1] + counts[sim.size - 1]);
+    PetscCallMPI(MPI_Allgatherv(halo.data(), count, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, sim.comm));
+    for (int r = 0; r < sim.size; ++r) {
+      if (r == sim.rank) continue;
+      for (PetscMPIInt k = displs[r]; k < displs[r] + counts[r]; k += stride) {
+        const PetscReal *xb = &all[k];
+        const PetscReal  sb = all[k + dim];
+        const PetscInt   lb = (PetscInt)all[k + dim + 1];
+        grid.Near(xb, [&](PetscInt a) {
+          if (close(x + dim * intact[a], size[intact[a]], xb, sb)) {
+            pairs.push_back(label_of(a));
+            pairs.push_back(lb);
+          }
+        });
+      }
+    }
+  }
+  // 3. merge the labels of all ranks on rank 0, broadcast label -> fragment
+  PetscInt total_labels = 0;
+  PetscCallMPI(MPI_Allreduce(&nroots, &total_labels, 1, MPIU_INT, MPI_SUM, sim.comm));
+  PetscMPIInt              npairs = (PetscMPIInt)pairs.size();
+  std::vector<PetscMPIInt> pcounts(sim.size), pdispls(sim.size, 0);
+  PetscCallMPI(MPI_Gather(&npairs, 1, MPI_INT, pcounts.data(), 1, MPI_INT, 0, sim.comm));
+  for (int r = 1; r < sim.size; ++r) pdispls[r] = pdispls[r - 1] + pcounts[r - 1];
+  std::vector<PetscInt> all_pairs(sim.rank ? 0 : pdispls[sim.size - 1] + pcounts[sim.size - 1]);
+  PetscCallMPI(MPI_Gatherv(pairs.data(), npairs, MPIU_INT, all_pairs.data(), pcounts.data(), pdispls.data(), MPIU_INT, 0, sim.comm));
+  std::vector<PetscInt> fragment_of(total_labels, 0);
+  PetscInt              nfragments = 0;
+  if (!sim.rank) {
+    UnionFind labels(total_labels);
+    for (size_t k = 0; k + 1 < all_pairs.size(); k += 2) labels.Join(all_pairs[k], all_pairs[k + 1]);
+    std::vector<PetscInt> id(total_labels, -1);
+    for (PetscInt l = 0; l < total_labels; ++l) {
+      const PetscInt r = labels.Find(l);
+      if (id[r] < 0) id[r] = nfragments++;
+      fragment_of[l] = id[r];
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&nfragments, 1, MPIU_INT, 0, sim.comm));
+  PetscCallMPI(MPI_Bcast(fragment_of.data(), total_labels, MPIU_INT, 0, sim.comm));
+
+  // fragment sums: particles, mass, momentum, first moment
+  const int             nsum = 2 + 2 * 3;
+  std::vector<PetscReal> sums((size_t)nsum * nfragments, 0), total(sim.rank ? 0 : (size_t)nsum * nfragments);
+  for (PetscInt a = 0; a < ni; ++a) {
+    const PetscInt p = intact[a], fr = fragment_of[label_of(a)];
+    fragment[p]      = fr;
+    PetscReal *s     = &sums[(size_t)nsum * fr];
+    s[0] += 1;
+    s[1] += m[p];
+    for (PetscInt d = 0; d < dim; ++d) {
+      s[2 + d] += m[p] * v[dim * p + d];
+      s[5 + d] += m[p] * x[dim * p + d];
+    }
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, sim.comm));
+  if (!sim.rank) {
+    last_count        = 0;
+    largest_mass      = 0;
+    total_intact_mass = 0;
+    for (PetscInt fr = 0; fr < nfragments; ++fr) {
+      const PetscReal *s = &total[(size_t)nsum * fr];
+      if (s[0] >= options.min_particles) ++last_count;
+      largest_mass = PetscMax(largest_mass, s[1]);
+      total_intact_mass += s[1];
+    }
+    if (write_table) {
+      const std::string path = sim.output_dir + "/fragments.csv", tmp = path + ".tmp";
+      {
+        std::ofstream out(tmp);
+        out << "fragment,particles,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z\n";
+        out.precision(10);
+        for (PetscInt fr = 0; fr < nfragments; ++fr) {
+          const PetscReal *s = &total[(size_t)nsum * fr];
+          out << fr << "," << (long long)s[0] << "," << s[1];
+          for (int d = 0; d < 3; ++d) out << "," << s[5 + d] / s[1];
+          for (int d = 0; d < 3; ++d) out << "," << s[2 + d] / s[1];
+          out << "\n";
+        }
+      }
+      PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", path.c_str());
+    }
+  }
+  PetscCallMPI(MPI_Bcast(&last_count, 1, MPIU_INT64, 0, sim.comm));
+  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, last_count, options.min_particles, nfragments, (double)largest_mass, (double)total_intact_mass));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Adds the fragment and Grady entries to summary.json (rank 0; `out` is inside the JSON object).
+PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
+{
+  PetscFunctionBeginUser;
+  if (options.enabled) {
+    out << "  \"fragment_count\": " << last_count << ",\n";
+    out << "  \"fragment_min_particles\": " << options.min_particles << ",\n";
+    out << "  \"largest_fragment_mass\": " << largest_mass << ",\n";
+    out << "  \"intact_mass\": " << total_intact_mass << ",\n";
+  }
+  if (options.grady) {
+    PetscReal tension, shear;
+    GradyEnergies(tension, shear);
+    const PetscReal V = fracture_velocity;
+    out << "  \"grady_gamma_tension\": " << tension << ",\n";
+    out << "  \"grady_gamma_shear\": " << shear << ",\n";
+    out << "  \"fracture_velocity\": " << V << ",\n";
+    out << "  \"fracture_time\": " << fracture_time << ",\n";
+    if (V > 0) {
+      const PetscReal fraction = options.sector / 360.0;
+      out << "  \"grady_tension\": {\"whole\": " << GradyCount(tension, V) << ", \"sector\": " << fraction * GradyCount(tension, V) << "},\n";
+      out << "  \"grady_shear\": {\"whole\": " << GradyCount(shear, V) << ", \"sector\": " << fraction * GradyCount(shear, V) << "},\n";
+    } else {
+      out << "  \"grady_tension\": null,\n  \"grady_shear\": null,\n";
+    }
+  }
+  (void)sim;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst
