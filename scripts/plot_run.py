@@ -129,7 +129,7 @@ def load_summary(outdir):
         return {}
 
 
-def plot_particles(outdir, field, summary):
+def plot_particles(outdir, field, summary, out_name="particles.png"):
     path, nfiles = last_particle_file(outdir)
     data, time, step = read_particles(path)
     x = data["coordinates"]
@@ -166,7 +166,17 @@ def plot_particles(outdir, field, summary):
     cmap = plt.get_cmap("viridis")
     norm = None
     ticks = None
-    if categorical and finite_v.size:
+    fragments = field == "fragment"
+    if fragments:
+        # failed and unassigned particles (id -1) as small grey dots; fragments in a cycling
+        # qualitative colormap (neighbouring ids get different colours)
+        debris = values < 0
+        ax.scatter(xy[debris, 0], xy[debris, 1], s=0.5, c="0.7", marker="o", linewidths=0)
+        xy, values, edge = xy[~debris], values[~debris], edge[~debris]
+        cmap = plt.get_cmap("tab20")
+        norm = colors.Normalize(-0.5, 19.5)
+        values = np.mod(values, 20)
+    elif categorical and finite_v.size:
         levels = np.unique(finite_v)
         base = plt.get_cmap("tab10")
         cmap = colors.ListedColormap([base(i % 10) for i in range(len(levels))])
@@ -185,11 +195,12 @@ def plot_particles(outdir, field, summary):
         norm = colors.Normalize(vmin, vmax)
 
     sc = ax.scatter(xy[:, 0], xy[:, 1], c=values, s=1.0, marker="o", linewidths=0, cmap=cmap, norm=norm)
-    cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.12)
-    cb = fig.colorbar(sc, cax=cax, ticks=ticks)
-    cb.set_label(label)
-    if ticks is not None:
-        cb.ax.set_yticklabels(["%d" % t for t in ticks])
+    if not fragments:
+        cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.12)
+        cb = fig.colorbar(sc, cax=cax, ticks=ticks)
+        cb.set_label(label)
+        if ticks is not None:
+            cb.ax.set_yticklabels(["%d" % t for t in ticks])
     if n == 0:
         ax.text(0.5, 0.5, "no particles", transform=ax.transAxes, ha="center", va="center")
 
@@ -200,7 +211,12 @@ def plot_particles(outdir, field, summary):
     if step is not None:
         when += ", step %d" % step
     view = ", x-y projection seen from +z" if dim == 3 else ""
-    ax.set_title("%s: %s\n%s, %d particles%s" % (scene, label.split(" [")[0], when, n, view), fontsize=11)
+    what = label.split(" [")[0]
+    if fragments and "fragment_count" in summary:
+        what = "%d fragments (failed particles grey)" % summary["fragment_count"]
+        if isinstance(summary.get("grady_tension"), dict):
+            what += "; Grady %.1f-%.1f" % (summary["grady_shear"]["sector"], summary["grady_tension"]["sector"])
+    ax.set_title("%s: %s\n%s, %d particles%s" % (scene, what, when, n, view), fontsize=11)
 
     # Marker diameter = 1.5 x particle edge, so that the circles of neighbours on a square lattice
     # (which need sqrt(2) x edge) leave no gaps and the body looks solid; in points, which needs the
@@ -210,7 +226,7 @@ def plot_particles(outdir, field, summary):
     points_per_metre = abs(x1 - x0) * 72.0 / fig.dpi
     sc.set_sizes((1.5 * edge * points_per_metre) ** 2)
 
-    out = os.path.join(outdir, "particles.png")
+    out = os.path.join(outdir, out_name)
     fig.savefig(out, dpi=DPI, bbox_inches="tight")
     plt.close(fig)
     return out, path, nfiles
@@ -270,6 +286,33 @@ def plot_energy(outdir, summary):
     return out, None
 
 
+def plot_fragment_masses(outdir, summary):
+    """Mass distribution of the fragments (fragments.csv): mass of each fragment, largest first."""
+    path = os.path.join(outdir, "fragments.csv")
+    if not os.path.exists(path):
+        return None
+    data = np.genfromtxt(path, delimiter=",", names=True, ndmin=1)
+    if data.size == 0:
+        return None
+    mass = np.sort(np.atleast_1d(data["mass"]))[::-1]
+    count = np.atleast_1d(data["particles"])[np.argsort(np.atleast_1d(data["mass"]))[::-1]]
+    minimum = summary.get("fragment_min_particles", 1)
+    fig, ax = plt.subplots(figsize=(6.5, 4), dpi=DPI)
+    ranks = np.arange(1, mass.size + 1)
+    counted = count >= minimum
+    ax.bar(ranks[counted], mass[counted], color="C0", label="fragments (>= %d particles)" % minimum)
+    ax.bar(ranks[~counted], mass[~counted], color="0.7", label="debris")
+    ax.set_yscale("log")
+    ax.set_xlabel("fragment, largest first")
+    ax.set_ylabel("mass [kg] (per metre in 2-D)")
+    ax.set_title("%s: fragment masses" % (summary.get("scene") or ""), fontsize=11)
+    ax.legend(fontsize=8)
+    out = os.path.join(outdir, "fragment_masses.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
 def main(argv=None):
     parser = argparse.ArgumentParser(description="Plot the particles and the energy balance of a burst run.")
     parser.add_argument("output_dir", help="the -output_dir of a burst run")
@@ -285,6 +328,12 @@ def main(argv=None):
 
     png, source, nfiles = plot_particles(outdir, args.field, summary)
     print("wrote %s (%s, last of %d particle file%s)" % (png, os.path.basename(source), nfiles, "" if nfiles == 1 else "s"))
+    if os.path.exists(os.path.join(outdir, "fragments.csv")):
+        png, _, _ = plot_particles(outdir, "fragment", summary, "fragments.png")
+        print("wrote %s" % png)
+        png = plot_fragment_masses(outdir, summary)
+        if png:
+            print("wrote %s" % png)
     png, problem = plot_energy(outdir, summary)
     if png is None:
         print("plot_run.py: warning: energy.png not written: %s" % problem, file=sys.stderr)
