@@ -165,6 +165,42 @@ def rotation(args):
     finish("rotation", failures)
 
 
+def failure_response(args):
+    """A point that fails on its first step (initial porosity 0.5 above the critical 0.3) then carries
+    nothing (zero_stress), only its pressure (no_shear), or only a compressive pressure (no_tension);
+    intact (response none) it keeps its full stress."""
+    failures = []
+    base = ["-options_file", METAL, "-metal_porosity_initial_mean", "0.5", "-metal_failure_porosity", "0.3", "-metal_failure_criteria", "porosity",
+            "-point_rate", "100", "-point_final_strain", "0.01", "-point_steps", "50"]
+    with tempfile.TemporaryDirectory() as tmp:
+        runs = {}
+        for response in ("none", "zero_stress", "no_shear", "no_tension"):
+            for path in ("uniaxial_strain", "hydrostatic"):
+                sign = ["-point_velocity_gradient", "-1,0,0,0,-1,0,0,0,-1", "-point_path", "velocity_gradient"] if path == "hydrostatic" else ["-point_path", path]
+                runs[(response, path)] = point(args.burst, base + ["-metal_failure_response", response, *sign], os.path.join(tmp, f"{response}_{path}.csv"))[-1]
+    q = {k: v["von_mises"] for k, v in runs.items()}
+    pres = {k: v["pressure"] for k, v in runs.items()}
+    print("failed point after 1 % strain: response -> (von Mises, pressure) in uniaxial tension-strain and hydrostatic compression:")
+    for response in ("none", "zero_stress", "no_shear", "no_tension"):
+        print(f"  {response:12s} tension ({q[(response, 'uniaxial_strain')] / 1e6:9.3f}, {pres[(response, 'uniaxial_strain')] / 1e6:9.3f}) MPa, "
+              f"compression ({q[(response, 'hydrostatic')] / 1e6:9.3f}, {pres[(response, 'hydrostatic')] / 1e6:9.3f}) MPa, failed flag {int(runs[(response, 'uniaxial_strain')]['failed'])}")
+    scale = abs(pres[("none", "uniaxial_strain")])
+    check("zero_stress carries nothing (|q| + |p|, tension)", (q[("zero_stress", "uniaxial_strain")] + abs(pres[("zero_stress", "uniaxial_strain")])) / scale, 1e-12, failures)
+    check("no_shear has no deviator (tension)", q[("no_shear", "uniaxial_strain")] / scale, 1e-12, failures)
+    check("no_shear keeps a pressure (tension): |p| > 0", 1.0 if pres[("no_shear", "uniaxial_strain")] == 0 else 0.0, 0, failures)
+    check("no_tension carries nothing in tension", (q[("no_tension", "uniaxial_strain")] + abs(pres[("no_tension", "uniaxial_strain")])) / scale, 1e-12, failures)
+    check("no_tension keeps compression: no deviator", q[("no_tension", "hydrostatic")] / scale, 1e-12, failures)
+    ok = pres[("no_tension", "hydrostatic")] > 0 and abs(pres[("no_tension", "hydrostatic")] - pres[("none", "hydrostatic")]) / pres[("none", "hydrostatic")] < 1e-12
+    print(f"  no_tension keeps the compressive pressure of the intact point: {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("no_tension pressure")
+    ok = q[("none", "uniaxial_strain")] > 0 and all(int(v["failed"]) for v in runs.values())
+    print(f"  every point failed and the intact response keeps its deviator: {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("flags")
+    finish("failure_response", failures)
+
+
 # Johnson & Cook (1985) 4340 Rc 30 data (verification.md 5): rate, T0, stress at eps_p 0/0.05/0.10/0.20 (MPa)
 JC_DATA = [("tension", 0.002, 298, [808.7, 968.9, 1042.8, 1135.1]), ("torsion", 0.009, 298, [798.2, 933.4, 988.4, 1027.1]),
            ("torsion", 0.1, 298, [774.9, 899.0, 961.8, 1006.1]), ("torsion", 1.1, 298, [865.6, 1003.3, 1067.1, 1114.7]),
@@ -209,8 +245,10 @@ def main():
     sub.add_parser("heating")
     sub.add_parser("jc_4340")
     sub.add_parser("rotation")
+    sub.add_parser("failure_response")
     args = p.parse_args()
-    {"simple_shear": simple_shear, "linear_hardening": linear_hardening, "heating": heating, "jc_4340": jc_4340, "rotation": rotation}[args.cmd](args)
+    {"simple_shear": simple_shear, "linear_hardening": linear_hardening, "heating": heating, "jc_4340": jc_4340, "rotation": rotation,
+     "failure_response": failure_response}[args.cmd](args)
 
 
 if __name__ == "__main__":
