@@ -85,6 +85,7 @@ struct Grid {
 struct Diagnostics {
   PetscReal external_work       = 0; // J, work of body forces and tractions (this rank)
   PetscReal removed_energy      = 0; // J, kinetic + internal energy of removed particles (this rank)
+  PetscReal viscous_work        = 0; // J, work of the artificial bulk viscosity (this rank)
   PetscReal removed_mass        = 0; // kg (this rank)
   PetscInt  removed_particles   = 0; // this rank
   PetscReal initial_energy      = 0; // J, global
@@ -191,6 +192,9 @@ PetscErrorCode WriteSummary(Simulation &sim);
 struct EnergyReport {
   PetscReal kinetic, internal, external_work, removed, total, balance_error;
   PetscReal failure_energy; // elastic energy released by failure responses (part of internal)
+  PetscReal plastic_work, heat, viscous_work; // parts of internal, J
+  PetscReal stored_elastic; // stored elastic energy (models that report it; else the whole internal energy), J
+  PetscReal unaccounted;    // internal - stored elastic - plastic work - viscous work - failure energy, J
   PetscReal momentum[3];
   PetscReal mass;
 };

@@ -42,6 +42,9 @@ constexpr const char *kFailureTime       = "failure_time";  // s
 constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
 constexpr const char *kPlasticDilatation = "plastic_dilatation"; // accumulated tr(eps_p) (GTN), -
 constexpr const char *kFailureEnergy     = "failure_energy";     // elastic energy released by the failure response, J
+constexpr const char *kPlasticWork       = "plastic_work";       // accumulated plastic work sigma : d eps_p V, J
+constexpr const char *kPlasticHeat       = "plastic_heat";       // the part of it turned into heat (eq. 18), J
+constexpr const char *kElasticEnergy     = "elastic_energy";     // stored elastic energy (p^2/(2K) + q^2/(6 mu)) V now, J
 
 // Registers the model's fields once per swarm (several elastic_plastic materials share them); the
 // mark is composed with the swarm, so it lives and dies with it.
@@ -226,7 +229,7 @@ public:
     PetscFunctionBeginUser;
     PetscCall(FieldsRegistered(swarm, &registered));
     if (registered) PetscFunctionReturn(PETSC_SUCCESS);
-    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy};
+    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy, kPlasticWork, kPlasticHeat, kElasticEnergy};
     for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, 1, PETSC_REAL));
     PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kRotation, 9, PETSC_REAL));
     PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
@@ -240,12 +243,14 @@ public:
     SwarmAccess       fields(swarm);
     const PetscInt   *material;
     const PetscInt64 *pid;
-    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released;
+    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat;
     PetscInt         *failed, *unstable;
     PetscFunctionBeginUser;
     PetscCall(fields.Get("material", &material));
     PetscCall(fields.Get(kPlasticDilatation, &dilatation));
     PetscCall(fields.Get(kFailureEnergy, &released));
+    PetscCall(fields.Get(kPlasticWork, &work));
+    PetscCall(fields.Get(kPlasticHeat, &heat));
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
@@ -260,7 +265,7 @@ public:
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
       if (material[p] != id) continue;
-      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = 0;
+      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = work[p] = heat[p] = 0;
       t_fail[p]                     = -1;
       failed[p] = unstable[p] = 0;
       const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
@@ -277,13 +282,16 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
     SwarmAccess fields(mp.swarm);
-    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released;
+    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat, *elastic;
     PetscInt   *failed, *unstable;
     Chunk       c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(fields.Get(kPlasticDilatation, &dilatation));
     PetscCall(fields.Get(kFailureEnergy, &released));
+    PetscCall(fields.Get(kPlasticWork, &work));
+    PetscCall(fields.Get(kPlasticHeat, &heat));
+    PetscCall(fields.Get(kElasticEnergy, &elastic));
     PetscCall(fields.Get(kPlasticStrain, &eps));
     PetscCall(fields.Get(kPlasticStrainRate, &rate));
     PetscCall(fields.Get(kPorosity, &f));
@@ -365,7 +373,7 @@ public:
         PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
       }
       // 5. porosity, temperature, triaxiality; then damage and stability
-      PetscReal porosity_old[kChunk];
+      PetscReal porosity_old[kChunk], plastic_work[kChunk];
       for (int k = 0; k < c.n; ++k) porosity_old[k] = c.porosity[k];
       for (int k = 0; k < c.n; ++k) {
         const PetscReal de = c.delta_plastic_strain[k];
@@ -379,6 +387,7 @@ public:
         // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
         // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
         const PetscReal matrix = settings.yield == YieldType::GTN ? 1 - porosity_old[k] : 1;
+        plastic_work[k]        = matrix * c.flow_stress[k] * de / c.density[k]; // J/kg; times mass below
         if (adiabatic) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
         c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
       }
@@ -416,6 +425,12 @@ public:
           Mat3Map(c.deviator[k]).setZero();
           c.equivalent_stress[k] = 0;
         }
+        {
+          const PetscReal p = -s_hat.trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
+          Mat3            dev = s_hat;
+          dev.diagonal().array() += p;
+          elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * dev.squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
+        }
         Mat3Map         sigma(mp.stress + 9 * q);
         const Mat3      sigma_old = sigma;
         sigma                     = R_new[k] * s_hat * R_new[k].transpose();
@@ -424,6 +439,8 @@ public:
         mp.temperature[q] = c.temperature[k];
         mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
         eps[q]            = c.plastic_strain[k];
+        work[q] += plastic_work[k] * mp.mass[q];
+        if (adiabatic) heat[q] += taylor_quinney * plastic_work[k] * mp.mass[q];
         dilatation[q] += c.trace_plastic_strain[k];
         rate[q]           = c.plastic_strain_rate[k];
         f[q]              = c.porosity[k];
@@ -439,7 +456,7 @@ public:
 
   std::vector<OutputField> OutputFields() const override
   {
-    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}};
+    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
   }
 
   // Wave speed from the reference moduli (before the first step).

@@ -41,21 +41,31 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   }
   local[2] = sim.diag.external_work;
   local[7] = sim.diag.removed_energy;
-  PetscReal released_local = 0, released = 0;
-  if (SwarmHasModelField(sim, "failure_energy")) {
-    const PetscReal *released_p;
-    PetscCall(fields.Get("failure_energy", &released_p));
-    for (PetscInt p = 0; p < n; ++p) released_local += released_p[p];
-  }
+  // parts of the internal energy kept by the models: failure energy, plastic work, heat
+  PetscReal   parts_local[5] = {0, 0, 0, sim.diag.viscous_work, 0}, parts[5];
+  const char *part_names[5] = {"failure_energy", "plastic_work", "plastic_heat", nullptr, "elastic_energy"};
+  const bool  elastic_known = SwarmHasModelField(sim, "elastic_energy");
+  for (int k = 0; k < 5; ++k)
+    if (part_names[k] && SwarmHasModelField(sim, part_names[k])) {
+      const PetscReal *values;
+      PetscCall(fields.Get(part_names[k], &values));
+      for (PetscInt p = 0; p < n; ++p) parts_local[k] += values[p];
+    }
+  if (!elastic_known) parts_local[4] = local[1]; // elastic materials store all their stress work
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 8, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCallMPI(MPI_Allreduce(&released_local, &released, 1, MPIU_REAL, MPI_SUM, sim.comm));
-  r.failure_energy = released;
+  PetscCallMPI(MPI_Allreduce(parts_local, parts, 5, MPIU_REAL, MPI_SUM, sim.comm));
+  r.failure_energy = parts[0];
+  r.plastic_work   = parts[1];
+  r.heat           = parts[2];
+  r.viscous_work   = parts[3];
   r.kinetic       = global[0];
   r.internal      = global[1];
   r.external_work = global[2];
   r.removed       = global[7];
   r.total         = r.kinetic + r.internal + r.removed;
+  r.stored_elastic = parts[4];
+  r.unaccounted    = r.internal - r.stored_elastic - r.plastic_work - r.viscous_work - r.failure_energy;
   for (int d = 0; d < 3; ++d) r.momentum[d] = global[3 + d];
   r.mass         = global[6];
   energy_scale   = PetscMax(energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
@@ -104,7 +114,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     const std::string path = sim.output_dir + "/monitor.csv";
     csv                    = std::fopen(path.c_str(), "w");
     PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
-    std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy");
+    std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy,plastic_work,heat,viscous_work,stored_elastic,unaccounted");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     std::fprintf(csv, "\n");
@@ -140,7 +150,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   if (!sim.rank && csv) {
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
-    std::fprintf(csv, ",%.12e", (double)r.failure_energy);
+    std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.track_pid >= 0)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
@@ -217,6 +227,11 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.diag.max_error_displacement, rms) << ",\n";
   }
   s << "  \"failure_energy\": " << r.failure_energy << ",\n";
+  s << "  \"plastic_work\": " << r.plastic_work << ",\n";
+  s << "  \"heat\": " << r.heat << ",\n";
+  s << "  \"viscous_work\": " << r.viscous_work << ",\n";
+  s << "  \"stored_elastic_energy\": " << r.stored_elastic << ",\n";
+  s << "  \"unaccounted_internal_energy\": " << r.unaccounted << ",\n";
   PetscCall(FragmentsSummary(sim, s));
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";

@@ -51,6 +51,7 @@ PetscErrorCode UpdateStress(Simulation &sim)
       const PetscReal rho = f.mass[p] / f.volume[p];
       q[p]                = rho * (sim.viscosity[0] * f.wave_speed[p] * -trace_D * dx + sim.viscosity[1] * trace_D * trace_D * dx * dx);
       f.internal_energy[p] += -q[p] * trace_D * f.volume[p] * sim.dt;
+      sim.diag.viscous_work += -q[p] * trace_D * f.volume[p] * sim.dt;
     }
   }
   PetscCall(fields.RestoreAll());
