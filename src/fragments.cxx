@@ -80,6 +80,7 @@ struct FragmentOptions {
   PetscBool enabled         = PETSC_FALSE;
   PetscReal distance_factor = 1.5;
   PetscInt  min_particles   = 4;
+  PetscReal min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
   // Grady-Hightower (eqs. 25-26)
   PetscBool grady = PETSC_FALSE;
   PetscReal center[3] = {0, 0, 0}, radius = 0, sector = 360;
@@ -88,6 +89,7 @@ struct FragmentOptions {
 FragmentOptions options;
 PetscReal       fracture_velocity = -1, fracture_time = -1; // measured at the first failure
 PetscInt64      last_count = 0;
+PetscReal       initial_mass = -1; // total mass at the first search
 PetscReal       largest_mass = 0, total_intact_mass = 0;
 } // namespace
 
@@ -99,6 +101,8 @@ PetscErrorCode FragmentsSetUp(Simulation &sim)
   PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", options.distance_factor, &options.distance_factor, nullptr));
   PetscCall(CheckRange(sim.comm, "-fragments_distance_factor", options.distance_factor, 0, 10, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", options.min_particles, &options.min_particles, nullptr));
+  PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", options.min_mass_fraction, &options.min_mass_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-fragments_min_mass_fraction", options.min_mass_fraction, 0, 1, PETSC_FALSE));
   PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", options.grady, &options.grady, nullptr));
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", options.center, sim.grid.dim, nullptr));
   PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", options.radius, &options.radius, nullptr));
@@ -315,15 +319,19 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       s[5 + d] += m[p] * x[dim * p + d];
     }
   }
+  PetscReal mass_local = 0, mass_total = 0;
+  for (PetscInt p = 0; p < n; ++p) mass_local += m[p];
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, sim.comm));
+  if (initial_mass < 0) initial_mass = mass_total;
   if (!sim.rank) {
     last_count        = 0;
     largest_mass      = 0;
     total_intact_mass = 0;
     for (PetscInt fr = 0; fr < nfragments; ++fr) {
       const PetscReal *s = &total[(size_t)nsum * fr];
-      if (s[0] >= options.min_particles) ++last_count;
+      if (s[0] >= options.min_particles && s[1] >= options.min_mass_fraction * initial_mass) ++last_count;
       largest_mass = PetscMax(largest_mass, s[1]);
       total_intact_mass += s[1];
     }
@@ -345,7 +353,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
     }
   }
   PetscCallMPI(MPI_Bcast(&last_count, 1, MPIU_INT64, 0, sim.comm));
-  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, last_count, options.min_particles, nfragments, (double)largest_mass, (double)total_intact_mass));
+  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, last_count, options.min_particles, (double)options.min_mass_fraction, nfragments, (double)largest_mass, (double)total_intact_mass));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -356,6 +364,8 @@ PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
   if (options.enabled) {
     out << "  \"fragment_count\": " << last_count << ",\n";
     out << "  \"fragment_min_particles\": " << options.min_particles << ",\n";
+    out << "  \"fragment_min_mass_fraction\": " << options.min_mass_fraction << ",\n";
+    out << "  \"initial_mass\": " << initial_mass << ",\n";
     out << "  \"largest_fragment_mass\": " << largest_mass << ",\n";
     out << "  \"intact_mass\": " << total_intact_mass << ",\n";
   }

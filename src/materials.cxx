@@ -26,8 +26,8 @@ PetscErrorCode CreateMaterials(Simulation &sim)
     m->id_ = i;
     sim.materials.emplace_back(m);
     densest = PetscMax(densest, m->Density());
-    PetscCall(PetscFree(names[i]));
   }
+  for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i])); // after the duplicate check used them
   sim.mass_cutoff = sim.mass_cutoff_fraction * densest * sim.grid.CellVolume();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

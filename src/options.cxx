@@ -9,6 +9,7 @@ const char *const FUpdateNames[]       = {"linear", "exponential"};
 const char *const FaceBCNames[]        = {"free", "fixed", "symmetry"};
 const char *const OutsidePolicyNames[] = {"error", "remove"};
 const char *const ShapeTypeNames[]     = {"linear", "ugimp", "cpgimp", "bspline2"};
+const char *const ContactTypeNames[]   = {"no_slip", "friction"};
 
 PetscErrorCode ReadRunOptions(Simulation &sim)
 {
@@ -55,6 +56,13 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   }
   PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.viscosity, 2, nullptr));
   PetscCheck(sim.viscosity[0] >= 0 && sim.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");
+  PetscCall(PetscOptionsBool("-mpm_convert_failed", "Failed particles join a velocity field of their own, meeting the intact material only through contact (the paper's conversion)", "", sim.convert_failed, &sim.convert_failed, nullptr));
+  choice = (int)sim.contact;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_contact_type", "Contact between velocity fields: no_slip (one velocity where both are present) or friction (Bardenhagen et al. 2001: only approaching fields interact, Coulomb friction)", ContactTypeNames, 2, &choice, nullptr));
+  sim.contact = (ContactType)choice;
+  PetscCall(PetscOptionsReal("-mpm_contact_friction", "Coulomb friction coefficient of the friction contact (-), >= 0", "", sim.friction, &sim.friction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_contact_friction", sim.friction, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  sim.grid.num_velocity_fields = sim.convert_failed ? 2 : 1;
   PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 

@@ -170,8 +170,9 @@ PetscErrorCode ReadGeometries(Simulation &sim)
 }
 
 struct SeedPoint {
-  PetscReal x[3];
-  PetscInt  geometry;
+  PetscReal  x[3];
+  PetscInt   geometry;
+  PetscInt64 id; // from (global cell, geometry, sub-cell): the same on any number of ranks
 };
 
 PetscErrorCode SeedParticles(Simulation &sim)
@@ -185,6 +186,12 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscInt ce[3]; // owned cells: lower node owned and cell index < cells
   for (int d = 0; d < 3; ++d) ce[d] = d < dim ? PetscMin(xs[d] + xm[d], g.cells[d]) : 1;
   if (dim == 2) { xs[2] = 0; }
+  // Particle ids: ((cell * geometries + geometry) * max_sub + sub), independent of the decomposition,
+  // so that id-keyed random draws and traced particles are the same on any number of ranks.
+  PetscInt max_ppc = 1;
+  for (const auto &geo : sim.geometries) max_ppc = PetscMax(max_ppc, geo->particles_per_cell);
+  const PetscInt64 max_sub = dim == 2 ? (PetscInt64)max_ppc * max_ppc : (PetscInt64)max_ppc * max_ppc * max_ppc;
+  const PetscInt64 ngeom   = (PetscInt64)sim.geometries.size();
   for (PetscInt k = xs[2]; k < ce[2]; ++k)
     for (PetscInt j = xs[1]; j < ce[1]; ++j)
       for (PetscInt i = xs[0]; i < ce[0]; ++i) {
@@ -203,17 +210,17 @@ PetscErrorCode SeedParticles(Simulation &sim)
             for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = sim.geometries[gj]->Contains(pt.x);
             if (claimed) continue;
             pt.geometry = gi;
+            const PetscInt64 cell_id = i + (PetscInt64)g.cells[0] * (j + (PetscInt64)g.cells[1] * k);
+            pt.id                    = (cell_id * ngeom + gi) * max_sub + s;
             points.push_back(pt);
           }
         }
       }
 
   const PetscInt n = (PetscInt)points.size();
-  PetscInt64     local = n, offset = 0;
-  PetscCallMPI(MPI_Exscan(&local, &offset, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  if (sim.rank == 0) offset = 0;
+  PetscInt64     local = n;
   PetscCallMPI(MPI_Allreduce(&local, &sim.total_particles, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  sim.next_pid = sim.total_particles;
+  sim.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first unused id
   PetscCheck(sim.total_particles > 0, sim.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
   PetscCall(DMSwarmSetLocalSizes(sim.swarm, n, 16));
 
@@ -250,7 +257,7 @@ PetscErrorCode SeedParticles(Simulation &sim)
     const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc);
     PetscReal       r_hat[3], r;
     geo.RadialDirection(points[p].x, r_hat, &r);
-    pid[p]   = offset + p;
+    pid[p]   = points[p].id;
     cell[p]  = -1;
     mat[p]   = geo.material;
     mass[p]  = sim.materials[geo.material]->Density() * sub_volume;

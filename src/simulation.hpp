@@ -17,11 +17,13 @@ enum class StepScheme : int { USL = 0, USF = 1, MUSL = 2 };
 enum class FUpdate : int { Linear = 0, Exponential = 1 };
 enum class FaceBC : int { Free = 0, Fixed = 1, Symmetry = 2 };
 enum class OutsidePolicy : int { Error = 0, Remove = 1 };
+enum class ContactType : int { NoSlip = 0, Friction = 1 };
 
 extern const char *const StepSchemeNames[];
 extern const char *const FUpdateNames[];
 extern const char *const FaceBCNames[];
 extern const char *const OutsidePolicyNames[];
+extern const char *const ContactTypeNames[];
 extern const char *const ShapeTypeNames[];
 
 // Names of the swarm fields registered by the core.
@@ -68,10 +70,11 @@ struct Grid {
   FaceBC    bc[3][2] = {{FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}};
   DM        da_nodes = nullptr;  // node DMDA, dof = nodal layout below
   DM        da_velocity = nullptr; // node DMDA for the velocity fields [v_old, v_new] per velocity field
-  // Nodal layout per velocity field: [mass, momentum(dim), force(dim)]. Several velocity fields
-  // (materials in contact) are stacked: dof = num_velocity_fields * NodeStride().
+  // Nodal layout per velocity field: [mass, momentum(dim), force(dim)], plus the mass gradient(dim)
+  // for the contact normals when there are several fields (failed particles converted to their own
+  // field). Fields are stacked: dof = num_velocity_fields * NodeStride().
   PetscInt  num_velocity_fields = 1;
-  PetscInt  NodeStride() const { return 1 + 2 * dim; }
+  PetscInt  NodeStride() const { return 1 + 2 * dim + (num_velocity_fields > 1 ? dim : 0); }
   // Ownership of node indices per direction, for owner-rank computation (petsc.md 3).
   PetscMPIInt              procs[3] = {1, 1, 1};
   std::vector<PetscInt>    start[3]; // start[d][r] = first node owned by slot r, with start[d][procs] = M
@@ -112,6 +115,9 @@ struct Simulation {
   PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void
   PetscReal   mass_cutoff = 0;             // kg, from the fraction and the densest material
   PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
+  PetscBool   convert_failed = PETSC_FALSE; // failed particles move in a velocity field of their own
+  ContactType contact = ContactType::Friction;
+  PetscReal   friction = 0;                // Coulomb coefficient of the contact between fields
 
   // Output
   PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)

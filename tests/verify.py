@@ -275,6 +275,32 @@ def grady(args):
     finish(f"grady[{s['scene']}] (validation report)", failures)
 
 
+def contact(args):
+    """Contact between velocity fields (tests/decks/sliding_block.opts): frictionless contact keeps the
+    slider's horizontal velocity (the normals at the block's corners are not exactly vertical: 2e-3),
+    Coulomb friction slows it, and in no case does the slider sink into the base."""
+    failures = []
+    results = {}
+    for label, extra in (("frictionless", []), ("friction 0.5", ["-mpm_contact_friction", "0.5"])):
+        with tempfile.TemporaryDirectory() as out:
+            run(args.burst, os.path.join(ROOT, "tests/decks/sliding_block.opts"), out, ["-output_interval", "0", *extra])
+            with h5py.File(sorted(os.path.join(out, f) for f in os.listdir(out) if f.startswith("particles_"))[-1], "r") as f:
+                g = f["particles"]
+                mat, v, m, x = g["material"][...].ravel(), g["velocity"][...], g["mass"][...].ravel(), g["coordinates"][...]
+            slider = mat == 1
+            vx = (m[slider] * v[slider, 0]).sum() / m[slider].sum()
+            gap = x[slider, 1].min() - x[~slider, 1].max()
+            results[label] = vx
+            print(f"sliding block, {label}: slider velocity {vx:.6f} m/s (started at 1), gap between the blocks {1e3 * gap:.2f} mm")
+            check(f"{label}: interpenetration (m)", max(-gap, 0.0), 0.0, failures)
+    check("frictionless: |v_x - 1| (m/s)", abs(results["frictionless"] - 1), 2e-3, failures)
+    ok = results["friction 0.5"] < 0.9
+    print(f"  friction slows the slider: {results['friction 0.5']:.3f} < 0.9 {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("friction")
+    finish("contact", failures)
+
+
 def read_particles(out):
     files = sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5"))
     with h5py.File(os.path.join(out, files[-1]), "r") as f:
@@ -360,6 +386,7 @@ def main():
     fr.add_argument("--centroids", default="0.25,0.25,0;0.7,0.3,0;0.5,0.725,0")
     fr.add_argument("--tol", type=float, default=1e-3)
     fr.add_argument("--extra", default="")
+    sub.add_parser("contact")
     gr = sub.add_parser("grady")
     gr.add_argument("--deck", default="options/scenes/ring2d.opts")
     gr.add_argument("--ranks", type=int, default=1)
@@ -370,7 +397,7 @@ def main():
     k.add_argument("--ranks", type=int, default=1)
     k.add_argument("--extra", default="")
     args = p.parse_args()
-    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact, "fragments": fragments, "grady": grady}[args.cmd](args)
+    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact, "fragments": fragments, "grady": grady, "contact": contact}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -99,7 +99,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
     }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids run from 0 to %" PetscInt64_FMT ")", sim.track_pid, sim.next_pid - 1);
+  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.track_pid, sim.next_pid);
   for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -1,7 +1,8 @@
-// Grid update on owned nodes: v_old = p/m, v_new = v_old + dt f/m, then the boundary conditions of
-// each domain face (fixed: v = 0; symmetry: normal component 0). Nodes lighter than the mass cut-off
+// Grid update on owned nodes: v_old = p/m, v_new = v_old + dt f/m per velocity field, contact
+// between the fields, then the boundary conditions of each domain face (fixed: v = 0; symmetry: normal component 0). Nodes lighter than the mass cut-off
 // are empty (v = 0). Results go to the velocity vector [v_old, v_new] and its ghosted copy.
 #include "grid_index.hpp"
+#include <cmath>
 
 namespace burst {
 
@@ -20,10 +21,52 @@ static inline void ApplyBoundaryConditions(const Grid &g, const PetscInt node[],
   }
 }
 
+// Contact between the two velocity fields of a node (intact and converted particles), Bardenhagen
+// et al., CMES 2 (2001) 509: no_slip gives both the centre-of-mass velocity; friction acts only while
+// the fields approach along the common normal n (from field 0 towards field 1, from the difference
+// of the nodal mass gradients, which point out of each body), removes the approaching normal velocity and limits the tangential slip by Coulomb
+// friction mu |dv.n|. Momentum is conserved: the two corrections are equal and opposite.
+static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal m[2], const PetscReal grad0[], const PetscReal grad1[], PetscReal v0[], PetscReal v1[])
+{
+  PetscReal vcm[3], n[3] = {0, 0, 0}, norm = 0;
+  for (PetscInt a = 0; a < dim; ++a) {
+    vcm[a] = (m[0] * v0[a] + m[1] * v1[a]) / (m[0] + m[1]);
+    n[a]   = grad0[a] - grad1[a]; // the nodal sums m_p grad N_I(x_p) point out of each body
+    norm += n[a] * n[a];
+  }
+  norm = std::sqrt(norm);
+  if (sim.contact == ContactType::NoSlip || norm == 0) {
+    for (PetscInt a = 0; a < dim; ++a) v0[a] = v1[a] = vcm[a];
+    return;
+  }
+  for (PetscInt a = 0; a < dim; ++a) n[a] /= norm;
+  PetscReal *v[2] = {v0, v1};
+  for (int f = 0; f < 2; ++f) {
+    const PetscReal sign = f == 0 ? 1.0 : -1.0; // outward normal of field f
+    PetscReal       dv[3], dn = 0, dt[3], tnorm = 0;
+    for (PetscInt a = 0; a < dim; ++a) {
+      dv[a] = v[f][a] - vcm[a];
+      dn += dv[a] * sign * n[a];
+    }
+    if (dn <= 0) return; // separating: the fields move independently
+    for (PetscInt a = 0; a < dim; ++a) {
+      dt[a] = dv[a] - dn * sign * n[a];
+      tnorm += dt[a] * dt[a];
+    }
+    tnorm = std::sqrt(tnorm);
+    if (sim.friction * dn >= tnorm) {
+      for (PetscInt a = 0; a < dim; ++a) v[f][a] = vcm[a]; // stick
+    } else {
+      for (PetscInt a = 0; a < dim; ++a) v[f][a] -= dn * sign * n[a] + (tnorm > 0 ? sim.friction * dn * dt[a] / tnorm : 0);
+    }
+  }
+}
+
 static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
 {
   Grid          &g   = sim.grid;
   const PetscInt dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
+  const PetscInt stride = g.NodeStride(), nvf = g.num_velocity_fields;
   PetscInt       xs[3], xm[3];
   const PetscScalar *nodal;
   PetscScalar       *vel;
@@ -36,22 +79,31 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
-        const PetscScalar *nd   = nodal + l * dof;
-        PetscScalar       *vn   = vel + l * vdof;
-        const PetscInt     node[3] = {i, j, k};
-        const PetscReal    mass = nd[0];
-        PetscReal          v_old[3] = {0, 0, 0}, v_new[3] = {0, 0, 0};
-        if (mass > sim.mass_cutoff) {
-          for (PetscInt a = 0; a < dim; ++a) {
-            v_old[a] = nd[1 + a] / mass;
-            v_new[a] = integrate ? v_old[a] + sim.dt * nd[1 + dim + a] / mass : v_old[a];
+        const PetscInt node[3] = {i, j, k};
+        PetscReal      v_old[2][3] = {{0, 0, 0}, {0, 0, 0}}, v_new[2][3] = {{0, 0, 0}, {0, 0, 0}}, mass[2] = {0, 0};
+        for (PetscInt vf = 0; vf < nvf; ++vf) {
+          const PetscScalar *nd = nodal + l * dof + vf * stride;
+          mass[vf]              = nd[0];
+          if (mass[vf] > sim.mass_cutoff) {
+            for (PetscInt a = 0; a < dim; ++a) {
+              v_old[vf][a] = nd[1 + a] / mass[vf];
+              v_new[vf][a] = integrate ? v_old[vf][a] + sim.dt * nd[1 + dim + a] / mass[vf] : v_old[vf][a];
+            }
           }
         }
-        ApplyBoundaryConditions(g, node, v_new);
-        if (!integrate) ApplyBoundaryConditions(g, node, v_old);
-        for (PetscInt a = 0; a < dim; ++a) {
-          vn[a]       = v_old[a];
-          vn[dim + a] = v_new[a];
+        if (nvf > 1 && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
+          const PetscScalar *g0 = nodal + l * dof + 1 + 2 * dim, *g1 = nodal + l * dof + stride + 1 + 2 * dim;
+          Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
+          Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);
+        }
+        for (PetscInt vf = 0; vf < nvf; ++vf) {
+          ApplyBoundaryConditions(g, node, v_new[vf]);
+          if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
+          PetscScalar *vn = vel + l * vdof + vf * 2 * dim;
+          for (PetscInt a = 0; a < dim; ++a) {
+            vn[a]       = v_old[vf][a];
+            vn[dim + a] = v_new[vf][a];
+          }
         }
       }
   PetscCall(VecRestoreArray(g.velocity, &vel));

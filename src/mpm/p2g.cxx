@@ -18,6 +18,8 @@ struct P2GKernel {
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q;
+    const PetscInt      *failed = nullptr;
+    const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
@@ -30,15 +32,21 @@ struct P2GKernel {
     PetscCall(fields.Get(field::stress, &sigma));
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::bulk_viscosity, &q));
+    if (nvf > 1) PetscCall(fields.Get("failed", &failed));
     Stencil<DIM, S> st;
     const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscReal  mp = m[p], Vp = vol[p], qp = q[p];
+      const PetscInt   vf = (failed && failed[p]) ? 1 : 0; // converted particles: their own field
       const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-        PetscScalar *node = nodal + index(i, j, k) * dof; // velocity field 0
-        if (do_mass) node[0] += N * mp;
+        PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
+        if (do_mass) {
+          node[0] += N * mp;
+          if (nvf > 1)
+            for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
+        }
         if (do_mom)
           for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
         if (do_force)
@@ -73,14 +81,19 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
   // zeros from the local vector.
   PetscCall(VecGetLocalSize(g.nodal, &nlocal));
   PetscCall(VecGetArray(g.nodal, &nodal));
-  for (PetscInt node = 0; node < nlocal / dof; ++node) {
-    PetscScalar *nd = nodal + node * dof;
-    if (what.mass) nd[0] = 0;
-    for (PetscInt a = 0; a < dim; ++a) {
-      if (what.momentum) nd[1 + a] = 0;
-      if (what.force) nd[1 + dim + a] = 0;
+  const PetscInt stride = g.NodeStride();
+  for (PetscInt node = 0; node < nlocal / dof; ++node)
+    for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
+      PetscScalar *nd = nodal + node * dof + vf * stride;
+      if (what.mass) {
+        nd[0] = 0;
+        for (PetscInt a = 0; a < dim && stride > 1 + 2 * dim; ++a) nd[1 + 2 * dim + a] = 0;
+      }
+      for (PetscInt a = 0; a < dim; ++a) {
+        if (what.momentum) nd[1 + a] = 0;
+        if (what.force) nd[1 + dim + a] = 0;
+      }
     }
-  }
   PetscCall(VecRestoreArray(g.nodal, &nodal));
   PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
