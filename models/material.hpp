@@ -63,6 +63,8 @@ public:
   virtual PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) = 0;
   // Prints every parameter with its unit.
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
+  // A rigid body returns true and its prescribed velocity (m/s).
+  virtual bool IsRigid(PetscReal velocity[3]) const { (void)velocity; return false; }
   // Model fields written with the particles (HDF5/XDMF).
   virtual std::vector<OutputField> OutputFields() const { return {}; }
 

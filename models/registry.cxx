@@ -9,6 +9,7 @@ namespace burst {
 PetscErrorCode LinearElasticCreate(Material **);
 PetscErrorCode NeoHookeanCreate(Material **);
 PetscErrorCode ElasticPlasticCreate(Material **);
+PetscErrorCode RigidCreate(Material **);
 PetscErrorCode SubModelRegistriesDestroy();
 
 static PetscFunctionList material_list  = nullptr;
@@ -29,6 +30,7 @@ PetscErrorCode MaterialRegisterAll()
   PetscCall(MaterialRegister("linear_elastic", LinearElasticCreate));
   PetscCall(MaterialRegister("neo_hookean", NeoHookeanCreate));
   PetscCall(MaterialRegister("elastic_plastic", ElasticPlasticCreate));
+  PetscCall(MaterialRegister("rigid", RigidCreate));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -45,10 +45,11 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(PetscLogStagePush(sim.stage_setup));
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
+  // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
+  //    geometry objects that seed particles
+  PetscCall(CreateMaterials(sim));
   PetscCall(CreateGrid(sim));
   PetscCall(FragmentsSetUp(sim));
-  // 2. Materials, load curves and the geometry objects that seed particles
-  PetscCall(CreateMaterials(sim));
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
   PetscCall(CreateAnalyticSolution(sim));

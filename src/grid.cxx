@@ -58,6 +58,7 @@ PetscErrorCode CreateGrid(Simulation &sim)
     g.upper[2] = 1;
   }
 
+  sim.mass_cutoff = sim.mass_cutoff_fraction * sim.densest * g.CellVolume();
   const PetscInt width = ShapeGhostWidth(sim.shape);
   const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
   if (g.dim == 2) {

@@ -28,7 +28,13 @@ PetscErrorCode CreateMaterials(Simulation &sim)
     densest = PetscMax(densest, m->Density());
   }
   for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i])); // after the duplicate check used them
-  sim.mass_cutoff = sim.mass_cutoff_fraction * densest * sim.grid.CellVolume();
+  sim.densest = densest; // the grid turns it into the nodal mass cut-off
+  for (PetscInt i = 0; i < (PetscInt)sim.materials.size(); ++i)
+    if (sim.materials[i]->IsRigid(sim.rigid_velocity)) {
+      PetscCheck(sim.rigid_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Only one rigid material is supported; -materials lists %s and %s", sim.materials[sim.rigid_material]->Name(), sim.materials[i]->Name());
+      sim.rigid_material = i;
+    }
+  sim.grid.num_velocity_fields = 1 + (sim.convert_failed ? 1 : 0) + (sim.rigid_material >= 0 ? 1 : 0);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

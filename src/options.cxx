@@ -62,7 +62,6 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   sim.contact = (ContactType)choice;
   PetscCall(PetscOptionsReal("-mpm_contact_friction", "Coulomb friction coefficient of the friction contact (-), >= 0", "", sim.friction, &sim.friction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_contact_friction", sim.friction, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  sim.grid.num_velocity_fields = sim.convert_failed ? 2 : 1;
   PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 
@@ -72,6 +71,7 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCheck(sim.monitor_interval > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_interval = %" PetscInt_FMT " is out of range: it must be > 0", sim.monitor_interval);
   PetscCall(PetscOptionsBool("-output_grid", "Write grid fields (mass, velocity) with the particles", "", sim.write_grid, &sim.write_grid, nullptr));
   PetscCall(PetscOptionsBool("-progress", "Print a progress line for long runs", "", sim.progress, &sim.progress, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-monitor_track_point", "Trace the particle nearest to this point at the start (m, 3 values; in 2-D the last is ignored)", sim.track_point, 3, &sim.track_by_point));
   PetscCall(PetscOptionsInt("-monitor_track_pid", "Particle id whose position and displacement go into monitor.csv; -1 = none", "", sim.track_pid, &sim.track_pid, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);

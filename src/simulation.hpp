@@ -114,10 +114,20 @@ struct Simulation {
   PetscReal   gravity[3] = {0, 0, 0};
   PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void
   PetscReal   mass_cutoff = 0;             // kg, from the fraction and the densest material
+  PetscReal   densest = 0;                 // kg/m^3, largest material density
   PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
   PetscBool   convert_failed = PETSC_FALSE; // failed particles move in a velocity field of their own
   ContactType contact = ContactType::Friction;
   PetscReal   friction = 0;                // Coulomb coefficient of the contact between fields
+  PetscInt    rigid_material = -1;         // material id of the rigid body, -1 if none
+  PetscReal   rigid_velocity[3] = {0, 0, 0};
+  // Velocity fields: 0 intact deformable, 1 converted (failed) particles if -mpm_convert_failed,
+  // last the rigid body if any.
+  PetscInt    VelocityField(PetscInt material, PetscInt failed) const
+  {
+    if (material == rigid_material) return grid.num_velocity_fields - 1;
+    return (convert_failed && failed) ? 1 : 0;
+  }
 
   // Output
   PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)
@@ -125,6 +135,8 @@ struct Simulation {
   PetscBool write_grid = PETSC_TRUE;
   PetscBool progress = PETSC_TRUE;
   PetscInt  track_pid = -1;      // particle id to trace in the monitor, -1 = none
+  PetscReal track_point[3] = {0, 0, 0};
+  PetscBool track_by_point = PETSC_FALSE; // trace the particle nearest to track_point at the start
   std::vector<PetscInt> output_steps; std::vector<PetscReal> output_times;
 
   // Objects

@@ -104,10 +104,42 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The id of the particle nearest to -monitor_track_point (the smallest id on a tie).
+static PetscErrorCode NearestParticle(Simulation &sim)
+{
+  PetscInt          n, dim = sim.grid.dim;
+  const PetscReal  *x;
+  const PetscInt64 *pid;
+  struct {
+    PetscReal d2;
+    PetscInt64 id;
+  } local = {PETSC_MAX_REAL, -1};
+  PetscFunctionBeginUser;
+  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal d2 = 0;
+    for (PetscInt d = 0; d < dim; ++d) d2 += (x[dim * p + d] - sim.track_point[d]) * (x[dim * p + d] - sim.track_point[d]);
+    if (d2 < local.d2 || (d2 == local.d2 && pid[p] < local.id)) local = {d2, pid[p]};
+  }
+  PetscCall(fields.RestoreAll());
+  PetscReal  best;
+  PetscInt64 id = PETSC_MAX_INT, candidate;
+  PetscCallMPI(MPI_Allreduce(&local.d2, &best, 1, MPIU_REAL, MPI_MIN, sim.comm));
+  candidate = local.d2 == best ? local.id : PETSC_MAX_INT;
+  PetscCallMPI(MPI_Allreduce(&candidate, &id, 1, MPIU_INT64, MPI_MIN, sim.comm));
+  sim.track_pid = (PetscInt)id;
+  PetscCall(PetscInfo(sim.swarm, "Tracing particle %" PetscInt64_FMT " at %g m from -monitor_track_point\n", id, (double)std::sqrt(best)));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MonitorSetUp(Simulation &sim)
 {
   EnergyReport r;
   PetscFunctionBeginUser;
+  if (sim.track_by_point) PetscCall(NearestParticle(sim));
   PetscCall(ComputeEnergies(sim, r));
   sim.diag.initial_energy = r.total - r.external_work;
   if (!sim.rank) {

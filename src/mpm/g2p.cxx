@@ -25,7 +25,7 @@ struct G2PKernel {
     PetscInt             n;
     PetscReal           *x, *v, *L, *F, *vol;
     const PetscReal     *hw, *fext, *vol0;
-    const PetscInt      *failed = nullptr;
+    const PetscInt      *failed = nullptr, *material = nullptr;
     const bool           exponential = sim.f_update == FUpdate::Exponential;
     PetscReal            work = 0;
     PetscFunctionBeginUser;
@@ -39,12 +39,13 @@ struct G2PKernel {
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::volume0, &vol0));
-    if (g.num_velocity_fields > 1) PetscCall(fields.Get("failed", &failed));
+    if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
+    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {};
-      const PetscInt vf = (failed && failed[p]) ? 1 : 0; // converted particles read their own field
+      const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
         for (int a = 0; a < DIM; ++a) {

@@ -62,6 +62,41 @@ static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal 
   }
 }
 
+// Contact of a deformable field with the rigid body (prescribed velocity v_r, infinite mass): where
+// the field moves into the body along its outward normal n (the rigid field's nodal mass gradient,
+// which points out of it), the normal part of the relative velocity is removed and the tangential
+// slip is limited by Coulomb friction; no_slip gives the field the rigid velocity.
+static inline void RigidContact(const Simulation &sim, PetscInt dim, const PetscReal grad_rigid[], const PetscReal v_r[], PetscReal v[])
+{
+  PetscReal n[3] = {0, 0, 0}, norm = 0, dv[3], dn = 0;
+  for (PetscInt a = 0; a < dim; ++a) {
+    n[a] = grad_rigid[a];
+    norm += n[a] * n[a];
+  }
+  norm = std::sqrt(norm);
+  if (sim.contact == ContactType::NoSlip || norm == 0) {
+    for (PetscInt a = 0; a < dim; ++a) v[a] = v_r[a];
+    return;
+  }
+  for (PetscInt a = 0; a < dim; ++a) {
+    n[a] /= norm;
+    dv[a] = v[a] - v_r[a];
+    dn += dv[a] * n[a];
+  }
+  if (dn >= 0) return; // moving away from the body
+  PetscReal dt[3], tnorm = 0;
+  for (PetscInt a = 0; a < dim; ++a) {
+    dt[a] = dv[a] - dn * n[a];
+    tnorm += dt[a] * dt[a];
+  }
+  tnorm = std::sqrt(tnorm);
+  if (sim.friction * -dn >= tnorm) {
+    for (PetscInt a = 0; a < dim; ++a) v[a] = v_r[a];
+  } else {
+    for (PetscInt a = 0; a < dim; ++a) v[a] -= dn * n[a] + (tnorm > 0 ? sim.friction * -dn * dt[a] / tnorm : 0);
+  }
+}
+
 static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
 {
   Grid          &g   = sim.grid;
@@ -80,7 +115,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
         const PetscInt node[3] = {i, j, k};
-        PetscReal      v_old[2][3] = {{0, 0, 0}, {0, 0, 0}}, v_new[2][3] = {{0, 0, 0}, {0, 0, 0}}, mass[2] = {0, 0};
+        PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
         for (PetscInt vf = 0; vf < nvf; ++vf) {
           const PetscScalar *nd = nodal + l * dof + vf * stride;
           mass[vf]              = nd[0];
@@ -91,14 +126,35 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
             }
           }
         }
-        if (nvf > 1 && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
-          const PetscScalar *g0 = nodal + l * dof + 1 + 2 * dim, *g1 = nodal + l * dof + stride + 1 + 2 * dim;
+        // Mass gradients for the contact normals. On a symmetry face the component normal to it is
+        // zero by symmetry (the body does not end there, it is mirrored), so it is dropped.
+        PetscReal grads[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+        if (nvf > 1)
+          for (PetscInt vf = 0; vf < nvf; ++vf)
+            for (PetscInt a = 0; a < dim; ++a) {
+              const bool mirrored = (node[a] == 0 && g.bc[a][0] == FaceBC::Symmetry) || (node[a] == g.cells[a] && g.bc[a][1] == FaceBC::Symmetry);
+              grads[vf][a]        = mirrored ? 0 : nodal[l * dof + vf * stride + 1 + 2 * dim + a];
+            }
+        const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
+        if (rigid >= 0 && mass[rigid] > sim.mass_cutoff) {
+          const PetscReal *gr = grads[rigid];
+          for (PetscInt a = 0; a < dim; ++a) v_old[rigid][a] = v_new[rigid][a] = sim.rigid_velocity[a];
+          for (PetscInt vf = 0; vf < rigid; ++vf)
+            if (mass[vf] > sim.mass_cutoff) {
+              RigidContact(sim, dim, gr, sim.rigid_velocity, v_old[vf]);
+              RigidContact(sim, dim, gr, sim.rigid_velocity, v_new[vf]);
+            }
+        }
+        if (sim.convert_failed && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
+          const PetscReal *g0 = grads[0], *g1 = grads[1];
           Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
           Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);
         }
         for (PetscInt vf = 0; vf < nvf; ++vf) {
-          ApplyBoundaryConditions(g, node, v_new[vf]);
-          if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
+          if (vf != rigid) { // the rigid velocity is prescribed
+            ApplyBoundaryConditions(g, node, v_new[vf]);
+            if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
+          }
           PetscScalar *vn = vel + l * vdof + vf * 2 * dim;
           for (PetscInt a = 0; a < dim; ++a) {
             vn[a]       = v_old[vf][a];
