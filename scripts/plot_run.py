@@ -173,9 +173,11 @@ def plot_particles(outdir, field, summary, out_name="particles.png"):
         debris = values < 0
         ax.scatter(xy[debris, 0], xy[debris, 1], s=0.5, c="0.7", marker="o", linewidths=0)
         xy, values, edge = xy[~debris], values[~debris], edge[~debris]
-        cmap = plt.get_cmap("tab20")
-        norm = colors.Normalize(-0.5, 19.5)
-        values = np.mod(values, 20)
+        base = plt.get_cmap("tab20")
+        palette = [base(i) for i in range(20) if i not in (14, 15)]  # no greys: grey marks failed particles
+        cmap = colors.ListedColormap(palette)
+        norm = colors.Normalize(-0.5, len(palette) - 0.5)
+        values = np.mod(values, len(palette))
     elif categorical and finite_v.size:
         levels = np.unique(finite_v)
         base = plt.get_cmap("tab10")

@@ -379,6 +379,7 @@ PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
     out << "  \"fracture_time\": " << fracture_time << ",\n";
     if (V > 0) {
       const PetscReal fraction = options.sector / 360.0;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Grady-Hightower for V = %.1f m/s at the first failure (t = %g s): %.2f (shear) to %.2f (tension) fragments on the modelled %g degrees; found %" PetscInt64_FMT "\n", (double)V, (double)fracture_time, (double)(fraction * GradyCount(shear, V)), (double)(fraction * GradyCount(tension, V)), (double)options.sector, last_count));
       out << "  \"grady_tension\": {\"whole\": " << GradyCount(tension, V) << ", \"sector\": " << fraction * GradyCount(tension, V) << "},\n";
       out << "  \"grady_shear\": {\"whole\": " << GradyCount(shear, V) << ", \"sector\": " << fraction * GradyCount(shear, V) << "},\n";
     } else {
