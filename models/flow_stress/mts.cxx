@@ -36,6 +36,7 @@ public:
   struct State {
     Scale     Si, Se;
     PetscReal ses, ses_r, ses_T, th0, th0_r, th0_T;
+    PetscReal rate_slope; // d(smoothly floored rate)/d(plastic rate), flow_point.hpp
   };
   struct Evolved { PetscReal se, d_de, d_rate, d_T; };
 
@@ -57,8 +58,7 @@ public:
   inline State Terms(const FlowPoint &x) const
   {
     State           st;
-    PetscReal       r_slope; // smooth floor of the rate (flow_point.hpp); Evaluate chains d_rate with it
-    const PetscReal T = x.temperature, mu = x.shear_modulus, r = SmoothRateFloor(x.plastic_strain_rate, min_rate, &r_slope);
+    const PetscReal T = x.temperature, mu = x.shear_modulus, r = SmoothRateFloor(x.plastic_strain_rate, min_rate, &st.rate_slope);
     if (sigma_i > 0) st.Si = Factor(T, mu, r, g0i, edot0i, p_i, q_i);
     else st.Si = Scale{0, 0, 0};
     st.Se                = Factor(T, mu, r, g0e, edot0e, p_e, q_e);
@@ -113,9 +113,7 @@ public:
     const PetscReal ratio = x.shear_modulus / mu0;
     y.sigma         = sigma_a + ratio * (st.Si.S * sigma_i + st.Se.S * e.se);
     y.d_strain      = ratio * st.Se.S * e.d_de;
-    PetscReal slope;
-    SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-    y.d_rate        = slope * ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
+    y.d_rate        = st.rate_slope * ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
     y.d_temperature = ratio * (st.Si.d_T * sigma_i + st.Se.d_T * e.se + st.Se.S * e.d_T);
   }
 

@@ -23,7 +23,6 @@
 #include <cmath>
 #include <cstdint>
 #include <memory>
-#include <set>
 #include <vector>
 
 namespace burst {
