@@ -76,6 +76,7 @@ public:
   std::string model_;        // registered model name
   PetscReal   density_ = -1; // reference mass density, kg/m^3
   PetscInt    id_      = -1; // material id (index in -materials) of its particles
+  PetscInt    registered_bytes_ = 0; // bytes per particle of the fields RegisterFields added
 };
 
 // Work of the stress over one step, 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt, with the mid-step

@@ -167,8 +167,11 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open -point_output %s", o.output.c_str());
     std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy\n");
   }
-  const char *optional_real[] = {"plastic_strain", "plastic_strain_rate", "porosity", "damage", "flow_stress"};
-  const char *optional_int[]  = {"unstable", "failed"};
+  // model fields written when the material has them (it declares them in OutputFields)
+  const char *optional[] = {"plastic_strain", "plastic_strain_rate", "porosity", "damage", "flow_stress", "unstable", "failed"};
+  bool        present[7] = {false, false, false, false, false, false, false};
+  for (int k = 0; k < 7; ++k)
+    for (const OutputField &of : material.OutputFields()) present[k] = present[k] || std::string(of.name) == optional[k];
   PetscReal   lateral_rate    = 0;
   for (PetscInt step = 0; step <= o.steps; ++step) {
     if (step > 0) {
@@ -241,37 +244,23 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     }
     // output of point 0
     SwarmAccess      f(sw);
-    const PetscReal *sigma, *T, *F, *opt[5] = {nullptr, nullptr, nullptr, nullptr, nullptr};
-    const PetscInt  *iopt[2] = {nullptr, nullptr};
+    const PetscReal *sigma, *T, *F;
+    PetscReal        values[7] = {0, 0, 0, 0, 0, 0, 0}; // optional[] in order
     PetscCall(f.Get(field::stress, &sigma));
     PetscCall(f.Get(field::temperature, &T));
     PetscCall(f.Get(field::F, &F));
-    PetscReal values[5] = {0, 0, 0, 0, 0};
-    PetscInt  ivalues[2] = {0, 0};
-    PetscCall(f.RestoreAll());
-    for (int k = 0; k < 5; ++k) {
-      PetscErrorCode ierr;
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-      ierr = DMSwarmGetField(sw, optional_real[k], nullptr, nullptr, (void **)&opt[k]);
-      PetscCall(PetscPopErrorHandler());
-      if (!ierr) {
-        values[k] = opt[k][0];
-        PetscCall(DMSwarmRestoreField(sw, optional_real[k], nullptr, nullptr, (void **)&opt[k]));
+    for (int k = 0; k < 7; ++k) {
+      if (!present[k]) continue;
+      if (k < 5) {
+        const PetscReal *v;
+        PetscCall(f.Get(optional[k], &v));
+        values[k] = v[0];
+      } else {
+        const PetscInt *v;
+        PetscCall(f.Get(optional[k], &v));
+        values[k] = v[0];
       }
     }
-    for (int k = 0; k < 2; ++k) {
-      PetscErrorCode ierr;
-      PetscCall(PetscPushErrorHandler(PetscReturnErrorHandler, nullptr));
-      ierr = DMSwarmGetField(sw, optional_int[k], nullptr, nullptr, (void **)&iopt[k]);
-      PetscCall(PetscPopErrorHandler());
-      if (!ierr) {
-        ivalues[k] = iopt[k][0];
-        PetscCall(DMSwarmRestoreField(sw, optional_int[k], nullptr, nullptr, (void **)&iopt[k]));
-      }
-    }
-    PetscCall(f.Get(field::stress, &sigma));
-    PetscCall(f.Get(field::temperature, &T));
-    PetscCall(f.Get(field::F, &F));
     Mat3 s0 = Mat3CMap(sigma);
     if (o.path == RotatingUniaxialStrain) { // report in the unrotated frame
       const PetscReal theta = o.rotation_angle * step / o.steps;
@@ -286,7 +275,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     dev.diagonal().array() += p;
     const PetscReal q = std::sqrt(1.5 * dev.squaredNorm());
     if (out)
-      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e\n", (int)step, (double)(step * dt), (double)(o.rate * step * dt), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)ivalues[0], (int)ivalues[1], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e\n", (int)step, (double)(step * dt), (double)(o.rate * step * dt), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
     if (step == o.steps) PetscCall(PetscPrintf(sim.comm, "Point driver: %s %s to strain %g at %g 1/s: stress xx %.6e Pa, von Mises %.6e Pa, plastic strain %.6g, temperature %.6g K; wrote %s\n", material.Name(), PathNames[o.path], (double)o.final_strain, (double)o.rate, (double)s0(0, 0), (double)q, (double)values[0], (double)T[0], o.output.c_str()));
     PetscCall(f.RestoreAll());
   }

@@ -153,6 +153,7 @@ struct Simulation {
   PetscInt64 total_particles = 0; // global count, checked after every migration
   PetscInt64 next_pid = 0;        // next unused particle id (global)
   PetscInt64 particle_steps = 0;  // global sum over steps of the particle count
+  PetscInt   swarm_bytes = 0;     // bytes of swarm storage per particle (all registered fields)
   PetscLogDouble wall_start = 0, wall_stepping = 0;
   Diagnostics diag;
 

@@ -18,28 +18,32 @@ PetscErrorCode CreateSwarm(Simulation &sim)
   PetscCall(DMSetType(sw, DMSWARM));
   PetscCall(DMSetDimension(sw, dim));
   PetscCall(DMSwarmSetType(sw, DMSWARM_BASIC));
+  sim.swarm_bytes = (PetscInt)(sizeof(PetscInt64) + sizeof(PetscInt)); // DMSwarm_pid and DMSwarm_rank, registered by PETSc
   // Coordinates and cell id first, under the PIC names, as DMSwarm's own viewers expect.
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, DMSwarmPICField_coor, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, DMSwarmPICField_cellid, 1, PETSC_INT));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::velocity, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::mass, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::volume, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::volume0, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::position0, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::half_width0, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::F, 9, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::stress, 9, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::L, 9, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::temperature, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::wave_speed, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::internal_energy, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::external_force, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::traction_area0, dim, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::load_curve, 1, PETSC_INT));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::bulk_viscosity, 1, PETSC_REAL));
-  PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::fragment, 1, PETSC_INT));
-  for (auto &m : sim.materials) PetscCall(m->RegisterFields(sw));
+  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_coor, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_cellid, 1, PETSC_INT, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::velocity, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::mass, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::volume, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::volume0, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::position0, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::half_width0, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::F, 9, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::stress, 9, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::L, 9, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::temperature, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::wave_speed, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::internal_energy, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::external_force, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::traction_area0, dim, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::load_curve, 1, PETSC_INT, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::material, 1, PETSC_INT, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::bulk_viscosity, 1, PETSC_REAL, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &sim.swarm_bytes));
+  for (auto &m : sim.materials) {
+    PetscCall(m->RegisterFields(sw));
+    sim.swarm_bytes += m->registered_bytes_;
+  }
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
   // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).
   PetscCall(DMSwarmSetLocalSizes(sw, 0, 16));

@@ -16,6 +16,17 @@
 
 namespace burst {
 
+// Registers a swarm field and adds its bytes per particle to *bytes (the storage figure of the summary).
+inline PetscErrorCode RegisterSwarmField(DM swarm, const char name[], PetscInt bs, PetscDataType type, PetscInt *bytes)
+{
+  size_t size;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, bs, type));
+  PetscCall(PetscDataTypeGetSize(type, &size));
+  *bytes += bs * (PetscInt)size;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 class SwarmAccess {
 public:
   explicit SwarmAccess(DM swarm) : swarm_(swarm) {}

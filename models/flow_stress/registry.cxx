@@ -1,4 +1,4 @@
-// Registry of the flow stress models: one declaration and one line per model.
+// Registry of the flow stress models: one declaration and one table entry per model.
 #include "../plasticity/families.hpp"
 
 namespace burst {
@@ -7,27 +7,16 @@ PetscErrorCode JohnsonCookCreate(SubModel **);
 PetscErrorCode LinearHardeningCreate(SubModel **);
 PetscErrorCode MTSFlowCreate(SubModel **);
 
-namespace {
-PetscFunctionList list_ = nullptr;
-}
-
 PetscErrorCode FlowStressList(PetscFunctionList *list)
 {
-  PetscFunctionBeginUser;
-  if (!list_) {
-    PetscCall(PetscFunctionListAdd(&list_, "johnson_cook", JohnsonCookCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "linear_hardening", LinearHardeningCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "mts", MTSFlowCreate));
-  }
-  *list = list_;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode FlowStressListDestroy()
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFunctionListDestroy(&list_));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  static PetscFunctionList storage = nullptr;
+  return SubModelRegistryGet(&storage,
+                             {
+                               {"johnson_cook", JohnsonCookCreate},
+                               {"linear_hardening", LinearHardeningCreate},
+                               {"mts", MTSFlowCreate},
+                             },
+                             list);
 }
 
 } // namespace burst

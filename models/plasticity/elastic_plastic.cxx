@@ -45,6 +45,34 @@ constexpr const char *kPlasticWork       = "plastic_work";       // accumulated 
 constexpr const char *kPlasticHeat       = "plastic_heat";       // the part of it turned into heat (eq. 18), J
 constexpr const char *kElasticEnergy     = "elastic_energy";     // stored elastic energy (p^2/(2K) + q^2/(6 mu)) V now, J
 
+// Views of the model's per-particle state, gotten together (the members in declaration order, so a
+// structured binding names them).
+struct StateFields {
+  PetscReal *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat, *elastic;
+  PetscInt  *failed, *unstable;
+
+  PetscErrorCode Get(SwarmAccess &fields)
+  {
+    PetscFunctionBeginUser;
+    PetscCall(fields.Get(kPlasticStrain, &eps));
+    PetscCall(fields.Get(kPlasticStrainRate, &rate));
+    PetscCall(fields.Get(kPorosity, &f));
+    PetscCall(fields.Get(kDamage, &D));
+    PetscCall(fields.Get(kRotation, &R));
+    PetscCall(fields.Get(kFlowHistory, &history));
+    PetscCall(fields.Get(kFlowStress, &sigma_f));
+    PetscCall(fields.Get(kFailureTime, &t_fail));
+    PetscCall(fields.Get(kPlasticDilatation, &dilatation));
+    PetscCall(fields.Get(kFailureEnergy, &released));
+    PetscCall(fields.Get(kPlasticWork, &work));
+    PetscCall(fields.Get(kPlasticHeat, &heat));
+    PetscCall(fields.Get(kElasticEnergy, &elastic));
+    PetscCall(fields.Get(kFailed, &failed));
+    PetscCall(fields.Get(kUnstable, &unstable));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
 // Registers the model's fields once per swarm (several elastic_plastic materials share them); the
 // mark is composed with the swarm, so it lives and dies with it.
 PetscErrorCode FieldsRegistered(DM swarm, PetscBool *registered)
@@ -229,11 +257,11 @@ public:
     PetscCall(FieldsRegistered(swarm, &registered));
     if (registered) PetscFunctionReturn(PETSC_SUCCESS);
     const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy, kPlasticWork, kPlasticHeat, kElasticEnergy};
-    for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, 1, PETSC_REAL));
-    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kRotation, 9, PETSC_REAL));
-    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL));
-    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kFailed, 1, PETSC_INT));
-    PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, kUnstable, 1, PETSC_INT));
+    for (const char *name : real1) PetscCall(RegisterSwarmField(swarm, name, 1, PETSC_REAL, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kRotation, 9, PETSC_REAL, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kFailed, 1, PETSC_INT, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kUnstable, 1, PETSC_INT, &registered_bytes_));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
@@ -242,29 +270,16 @@ public:
     SwarmAccess       fields(swarm);
     const PetscInt   *material;
     const PetscInt64 *pid;
-    PetscReal        *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat;
-    PetscInt         *failed, *unstable;
+    StateFields       state;
     PetscFunctionBeginUser;
     PetscCall(fields.Get("material", &material));
-    PetscCall(fields.Get(kPlasticDilatation, &dilatation));
-    PetscCall(fields.Get(kFailureEnergy, &released));
-    PetscCall(fields.Get(kPlasticWork, &work));
-    PetscCall(fields.Get(kPlasticHeat, &heat));
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
-    PetscCall(fields.Get(kPlasticStrain, &eps));
-    PetscCall(fields.Get(kPlasticStrainRate, &rate));
-    PetscCall(fields.Get(kPorosity, &f));
-    PetscCall(fields.Get(kDamage, &D));
-    PetscCall(fields.Get(kRotation, &R));
-    PetscCall(fields.Get(kFlowHistory, &history));
-    PetscCall(fields.Get(kFlowStress, &sigma_f));
-    PetscCall(fields.Get(kFailed, &failed));
-    PetscCall(fields.Get(kFailureTime, &t_fail));
-    PetscCall(fields.Get(kUnstable, &unstable));
+    PetscCall(state.Get(fields));
+    auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
       if (material[p] != id) continue;
-      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = work[p] = heat[p] = 0;
+      eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = work[p] = heat[p] = elastic[p] = 0;
       t_fail[p]                     = -1;
       failed[p] = unstable[p] = 0;
       const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
@@ -281,26 +296,12 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
     SwarmAccess fields(mp.swarm);
-    PetscReal  *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat, *elastic;
-    PetscInt   *failed, *unstable;
+    StateFields state;
     Chunk       c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
-    PetscCall(fields.Get(kPlasticDilatation, &dilatation));
-    PetscCall(fields.Get(kFailureEnergy, &released));
-    PetscCall(fields.Get(kPlasticWork, &work));
-    PetscCall(fields.Get(kPlasticHeat, &heat));
-    PetscCall(fields.Get(kElasticEnergy, &elastic));
-    PetscCall(fields.Get(kPlasticStrain, &eps));
-    PetscCall(fields.Get(kPlasticStrainRate, &rate));
-    PetscCall(fields.Get(kPorosity, &f));
-    PetscCall(fields.Get(kDamage, &D));
-    PetscCall(fields.Get(kRotation, &R));
-    PetscCall(fields.Get(kFlowHistory, &history));
-    PetscCall(fields.Get(kFlowStress, &sigma_f));
-    PetscCall(fields.Get(kFailed, &failed));
-    PetscCall(fields.Get(kFailureTime, &t_fail));
-    PetscCall(fields.Get(kUnstable, &unstable));
+    PetscCall(state.Get(fields));
+    auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     c.dt             = dt;
     c.density0       = density_;
     c.taylor_quinney = taylor_quinney;

@@ -3,6 +3,7 @@
 // file in models/FAMILY/ and one line there.
 #pragma once
 #include "submodel.hpp"
+#include <initializer_list>
 
 namespace burst {
 
@@ -32,6 +33,15 @@ class DamageModel : public ChunkModel {};
 // Stability: reads deviator, D_hat, shear_modulus, bulk_modulus, hardening, plastic, pressure;
 // sets bits of unstable (1: Drucker, 2: loss of hyperbolicity).
 class StabilityCheck : public ChunkModel {};
+
+// One family's table entry: registered name and create function.
+struct SubModelEntry {
+  const char *name;
+  PetscErrorCode (*create)(SubModel **);
+};
+// Returns the registry in *storage, filling it from `models` on first use; SubModelRegistriesDestroy
+// frees every registry filled this way.
+PetscErrorCode SubModelRegistryGet(PetscFunctionList *storage, std::initializer_list<SubModelEntry> models, PetscFunctionList *list);
 
 // Registries, one per family (models/FAMILY/registry.cxx, created on first use).
 PetscErrorCode EquationOfStateList(PetscFunctionList *list);

@@ -1,4 +1,4 @@
-// Registry of the shear modulus models: one declaration and one line per model.
+// Registry of the shear modulus models: one declaration and one table entry per model.
 #include "../plasticity/families.hpp"
 
 namespace burst {
@@ -7,27 +7,16 @@ PetscErrorCode ConstantShearCreate(SubModel **);
 PetscErrorCode MTSShearCreate(SubModel **);
 PetscErrorCode SCGShearCreate(SubModel **);
 
-namespace {
-PetscFunctionList list_ = nullptr;
-}
-
 PetscErrorCode ShearModulusList(PetscFunctionList *list)
 {
-  PetscFunctionBeginUser;
-  if (!list_) {
-    PetscCall(PetscFunctionListAdd(&list_, "constant", ConstantShearCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "mts", MTSShearCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "scg", SCGShearCreate));
-  }
-  *list = list_;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode ShearModulusListDestroy()
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFunctionListDestroy(&list_));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  static PetscFunctionList storage = nullptr;
+  return SubModelRegistryGet(&storage,
+                             {
+                               {"constant", ConstantShearCreate},
+                               {"mts", MTSShearCreate},
+                               {"scg", SCGShearCreate},
+                             },
+                             list);
 }
 
 } // namespace burst

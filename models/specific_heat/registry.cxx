@@ -1,4 +1,4 @@
-// Registry of the specific heat models: one declaration and one line per model.
+// Registry of the specific heat models: one declaration and one table entry per model.
 #include "../plasticity/families.hpp"
 
 namespace burst {
@@ -8,28 +8,17 @@ PetscErrorCode SteelSpecificHeatCreate(SubModel **);
 PetscErrorCode GotoSpecificHeatCreate(SubModel **);
 PetscErrorCode CopperSpecificHeatCreate(SubModel **);
 
-namespace {
-PetscFunctionList list_ = nullptr;
-}
-
 PetscErrorCode SpecificHeatList(PetscFunctionList *list)
 {
-  PetscFunctionBeginUser;
-  if (!list_) {
-    PetscCall(PetscFunctionListAdd(&list_, "constant", ConstantSpecificHeatCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "steel", SteelSpecificHeatCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "goto", GotoSpecificHeatCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "copper", CopperSpecificHeatCreate));
-  }
-  *list = list_;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode SpecificHeatListDestroy()
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFunctionListDestroy(&list_));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  static PetscFunctionList storage = nullptr;
+  return SubModelRegistryGet(&storage,
+                             {
+                               {"constant", ConstantSpecificHeatCreate},
+                               {"steel", SteelSpecificHeatCreate},
+                               {"goto", GotoSpecificHeatCreate},
+                               {"copper", CopperSpecificHeatCreate},
+                             },
+                             list);
 }
 
 } // namespace burst

@@ -1,4 +1,4 @@
-// Registry of the stability models: one declaration and one line per model.
+// Registry of the stability models: one declaration and one table entry per model.
 #include "../plasticity/families.hpp"
 
 namespace burst {
@@ -8,28 +8,17 @@ PetscErrorCode DruckerCheckCreate(SubModel **);
 PetscErrorCode AcousticCheckCreate(SubModel **);
 PetscErrorCode BeckerCheckCreate(SubModel **);
 
-namespace {
-PetscFunctionList list_ = nullptr;
-}
-
 PetscErrorCode StabilityList(PetscFunctionList *list)
 {
-  PetscFunctionBeginUser;
-  if (!list_) {
-    PetscCall(PetscFunctionListAdd(&list_, "none", NoStabilityCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "drucker", DruckerCheckCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "acoustic", AcousticCheckCreate));
-    PetscCall(PetscFunctionListAdd(&list_, "becker", BeckerCheckCreate));
-  }
-  *list = list_;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode StabilityListDestroy()
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscFunctionListDestroy(&list_));
-  PetscFunctionReturn(PETSC_SUCCESS);
+  static PetscFunctionList storage = nullptr;
+  return SubModelRegistryGet(&storage,
+                             {
+                               {"none", NoStabilityCreate},
+                               {"drucker", DruckerCheckCreate},
+                               {"acoustic", AcousticCheckCreate},
+                               {"becker", BeckerCheckCreate},
+                             },
+                             list);
 }
 
 } // namespace burst

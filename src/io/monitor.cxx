@@ -193,34 +193,12 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Bytes of swarm storage per particle: the sum over registered fields of block size x type size.
-static PetscErrorCode BytesPerParticle(Simulation &sim, PetscInt *bytes)
-{
-  PetscInt nfields = 0;
-  PetscFunctionBeginUser;
-  *bytes = 0;
-  const char *names[] = {DMSwarmField_pid, DMSwarmField_rank, DMSwarmPICField_coor, DMSwarmPICField_cellid, field::velocity, field::mass, field::volume, field::volume0, field::position0, field::half_width0, field::F, field::stress, field::L, field::temperature, field::wave_speed, field::internal_energy, field::external_force, field::traction_area0, field::load_curve, field::material};
-  for (const char *name : names) {
-    PetscInt      bs;
-    PetscDataType type;
-    void         *data;
-    size_t        size;
-    PetscCall(DMSwarmGetField(sim.swarm, name, &bs, &type, &data));
-    PetscCall(DMSwarmRestoreField(sim.swarm, name, &bs, &type, &data));
-    PetscCall(PetscDataTypeGetSize(type, &size));
-    *bytes += bs * (PetscInt)size;
-    ++nfields;
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode WriteSummary(Simulation &sim)
 {
   EnergyReport r;
-  PetscInt     bytes;
   PetscFunctionBeginUser;
   PetscCall(ComputeEnergies(sim, r));
-  PetscCall(BytesPerParticle(sim, &bytes));
+  const PetscInt bytes = sim.swarm_bytes;
   PetscReal rms = 0, max = 0;
   if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
