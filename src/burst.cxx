@@ -11,8 +11,8 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 // The flow of one run: options -> grid -> materials -> particles -> [step, monitor, output]* ->
 // summary. One time step is src/step.cxx.
 #include "simulation.hpp"
-#include "geometry.hpp"
-#include "analytic.hpp"
+#include "mpm/geometry.hpp"
+#include "mpm/analytic.hpp"
 #include "util.hpp"
 
 using namespace burst;

@@ -19,7 +19,7 @@
 #include "polar.hpp"
 #include "../flow_stress/flow_stress.hpp"
 #include "../material.hpp"
-#include "../../src/swarm_access.hpp"
+#include "../../src/mpm/swarm_access.hpp"
 #include <cmath>
 #include <cstdint>
 #include <memory>

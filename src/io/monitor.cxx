@@ -4,8 +4,8 @@
 // initial value for a conservative scheme; the relative balance error divides the drift by the
 // largest energy seen (kinetic + internal + |external work|).
 #include "../simulation.hpp"
-#include "../swarm_access.hpp"
-#include "../analytic.hpp"
+#include "mpm/swarm_access.hpp"
+#include "mpm/analytic.hpp"
 #include <cstdio>
 #include <fstream>
 #include <sstream>

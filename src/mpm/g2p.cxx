@@ -5,7 +5,7 @@
 //                      (fused here so F, L and the volumes are streamed once per step)
 // The work of the external forces, f_ext . (v_p^n + v_p^{n+1})/2 dt, is accumulated here.
 #include "grid_index.hpp"
-#include "../swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 #include "expm.hpp"
 
 namespace burst {

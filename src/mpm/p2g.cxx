@@ -1,7 +1,7 @@
 // Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
 // into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
 #include "grid_index.hpp"
-#include "../swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 
 namespace burst {
 

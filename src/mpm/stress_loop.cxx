@@ -1,7 +1,7 @@
 // The constitutive call: each material updates the stress of its own particles in one flat loop
 // (models/). F and V were updated with L in the G2P pass (g2p.cxx).
 #include "../simulation.hpp"
-#include "../swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 

@@ -1,7 +1,7 @@
 // Time step and external forces.
 #include "../simulation.hpp"
-#include "../swarm_access.hpp"
-#include "../analytic.hpp"
+#include "mpm/swarm_access.hpp"
+#include "mpm/analytic.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 

@@ -8,14 +8,14 @@
 //   1. GTNReturn called directly on a Chunk with a flow model defined here (linear hardening, a
 //      rate-dependent power law with one history variable) or the registered johnson_cook model.
 //   2. The damage models created through their registry, on a Chunk held at constant state.
-//   3. The whole elastic_plastic material (registry, one-point DMSwarm as in src/point_driver.cxx)
+//   3. The whole elastic_plastic material (registry, one-point DMSwarm as in src/mpm/point_driver.cxx)
 //      under pure dilatation L = r I, against an independent RK4 integration of the rate equations
 //      and against an independent re-implementation of the discrete update.
 #include "material.hpp"
 #include "flow_stress/flow_stress.hpp"
 #include "plasticity/families.hpp"
 #include "simulation.hpp"
-#include "swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -417,7 +417,7 @@ TEST(GTNReturn, RandomStatesJohnsonCook)
 }
 
 // -------------------------------------------------------------------------------------------------
-// The elastic_plastic material on a one-point swarm (the set-up of src/point_driver.cxx).
+// The elastic_plastic material on a one-point swarm (the set-up of src/mpm/point_driver.cxx).
 namespace {
 
 // DMSwarms are destroyed only after the last test: elastic_plastic registers its fields once per DM

@@ -17,9 +17,9 @@
 //                       rotated back by R(theta)^T so it compares with the unrotated path.
 // The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad).
 #include "simulation.hpp"
-#include "swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 #include "util.hpp"
-#include "mpm/expm.hpp"
+#include "expm.hpp"
 #include <cstdio>
 #include <memory>
 

@@ -12,7 +12,7 @@
 // The modelled region is what is counted: a fragment cut by a symmetry plane is one fragment of the
 // quarter model. Failed particles (field `failed` != 0) are not part of any fragment.
 #include "simulation.hpp"
-#include "swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 // Materials of a run: -materials name1,name2 and one prefixed block of options per name.
 #include "simulation.hpp"
 #include "util.hpp"
-#include "geometry.hpp"
-#include "analytic.hpp"
+#include "mpm/geometry.hpp"
+#include "mpm/analytic.hpp"
 
 namespace burst {
 

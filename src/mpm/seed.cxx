@@ -3,10 +3,10 @@
 // Each geometry fills the cells owned by this rank with particles_per_cell^dim particles per cell at
 // the centres of equal sub-cells. A particle takes the volume of its sub-cell and mass = density x
 // volume. Geometries are filled in the order listed; a point already claimed is not seeded twice.
-#include "geometry.hpp"
-#include "swarm_access.hpp"
+#include "mpm/geometry.hpp"
+#include "mpm/swarm_access.hpp"
 #include "util.hpp"
-#include "analytic.hpp"
+#include "mpm/analytic.hpp"
 #include <cmath>
 
 namespace burst {

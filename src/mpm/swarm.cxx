@@ -2,7 +2,7 @@
 // ownership ranges (petsc.md 3, 4.1-4.2). BASIC migration sends each point straight to its owner at
 // any distance, so nothing is lost silently; burst still compares the global count before and after.
 #include "simulation.hpp"
-#include "swarm_access.hpp"
+#include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
 

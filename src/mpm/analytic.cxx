@@ -1,5 +1,5 @@
-#include "analytic.hpp"
-#include "swarm_access.hpp"
+#include "mpm/analytic.hpp"
+#include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
 
