@@ -50,7 +50,7 @@ def main():
         n = sizes[dim]
         for shape in args.shapes.split(","):
             for ranks in [int(r) for r in args.ranks.split(",")]:
-                extra = ["-mpm_shape_type", shape, "-mpm_max_steps", str(steps[dim])]
+                extra = ["-mpm_shape_type", shape, "-max_steps", str(steps[dim])]
                 if dim == 2:
                     extra += ["-grid_cells", f"{n},{n}"]
                 else:
@@ -93,7 +93,7 @@ def stress_benchmark(args):
             cmd = [args.burst, "-options_file", deck, "-options_file", os.path.join(ROOT, "options/materials/steel_4340_jc.opts"), "-block_material", "steel",
                    "-output_dir", out, "-dim", "3", "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", f"{n},{n},{n}", "-block_lower", "0.1,0.1,0.1",
                    "-block_upper", "0.9,0.9,0.9", "-block_velocity", "0,0,0", "-block_center", "0.5,0.5,0.5", "-block_radial_velocity", "500",
-                   "-mpm_outside_domain", "remove", "-mpm_shape_type", "cpgimp", "-mpm_max_steps", str(steps), "-log_view", *extra]
+                   "-mpm_outside_domain", "remove", "-mpm_shape_type", "cpgimp", "-max_steps", str(steps), "-log_view", *extra]
             proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
             if proc.returncode:
                 reason = next((line.split("ERROR:", 1)[1].strip() for line in (proc.stdout + proc.stderr).splitlines() if "PETSC ERROR:" in line and ("Unknown" in line or "not" in line)), "run failed")

@@ -25,10 +25,10 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsString("-output_dir", "Folder for HDF5/XDMF output, monitor.csv and summary.json", "", buf, buf, sizeof(buf), &set));
   sim.output_dir = buf;
 
-  PetscCall(PetscOptionsReal("-mpm_final_time", "Final time (s), > 0", "", sim.final_time, &sim.final_time, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_final_time", sim.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
-  PetscCall(PetscOptionsInt("-mpm_max_steps", "Stop after this many steps (default: no limit)", "", sim.max_steps, &sim.max_steps, nullptr));
-  PetscCheck(sim.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.max_steps);
+  PetscCall(PetscOptionsReal("-final_time", "Final time (s), > 0", "", sim.final_time, &sim.final_time, nullptr));
+  PetscCall(CheckRange(sim.comm, "-final_time", sim.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (default: no limit)", "", sim.max_steps, &sim.max_steps, nullptr));
+  PetscCheck(sim.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.max_steps);
   PetscCall(PetscOptionsReal("-mpm_cfl", "Courant number: dt = cfl min_p min_d h_d/(c_p + |v_p,d|), in (0, 1]", "", sim.cfl, &sim.cfl, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_cfl", sim.cfl, 0, 1, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-mpm_dt_max", "Largest time step (s), > 0 (default: none)", "", sim.dt_max, &sim.dt_max, nullptr));

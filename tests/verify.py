@@ -71,7 +71,7 @@ def bar(args):
         tip = (cells_along - 1) * ppc * ppc + (ppc - 1)
         with tempfile.TemporaryDirectory() as out:
             run(args.burst, deck, out, ["-mpm_shape_type", args.shape, "-grid_upper", f"{cells_x * h},{h}", "-grid_cells", f"{cells_x},1",
-                                        "-rod_upper", f"{length},{h}", "-monitor_track_pid", str(tip), "-mpm_final_time", "30"])
+                                        "-rod_upper", f"{length},{h}", "-monitor_track_pid", str(tip), "-final_time", "30"])
             m = monitor(out)
         t, u = m["time"], m["track_ux"]
         X = m["track_x"][0]
@@ -166,7 +166,7 @@ def loads(args):
     deck = os.path.join(ROOT, "tests/decks/pressurized_ring.opts")
     inner_radius = 0.0508
     with tempfile.TemporaryDirectory() as out:
-        run(args.burst, deck, out, ["-mpm_max_steps", "40"])
+        run(args.burst, deck, out, ["-max_steps", "40"])
         m = monitor(out)
     # the pressure at t_n acts over [t_n, t_n+1]; ramp p(t) = 1e13 t
     t, px, py = m["time"], m["momentum_x"], m["momentum_y"]
@@ -177,7 +177,7 @@ def loads(args):
     check("y resultant error (relative)", ey, args.tol, failures)
     with tempfile.TemporaryDirectory() as out:
         s = run(args.burst, os.path.join(ROOT, "tests/decks/bench_block.opts"), out,
-                ["-gravity", "0,-9.81", "-block_velocity", "0,0", "-mpm_max_steps", "50", "-steel_youngs_modulus", "1e6", "-mpm_scheme", "musl"])
+                ["-gravity", "0,-9.81", "-block_velocity", "0,0", "-max_steps", "50", "-steel_youngs_modulus", "1e6", "-mpm_scheme", "musl"])
         m = monitor(out)
     expected = -9.81 * s["final_time"] * s["mass"]
     e = abs(s["momentum"][1] - expected) / abs(expected)
@@ -205,7 +205,7 @@ def plate_impact(args):
     with tempfile.TemporaryDirectory() as out:
         # h = 0.125 mm along x; the traced particle starts at x = 20.03 mm
         run(args.burst, os.path.join(ROOT, args.deck), out, ["-grid_cells", args.cells, "-monitor_track_point", "0.02003125,0.0000625,0.0000625",
-                                                             "-mpm_final_time", "6e-6", *args.extra.split()])
+                                                             "-final_time", "6e-6", *args.extra.split()])
         m = monitor(out)
     t, sxx, x0 = m["time"], -m["track_sxx"], m["track_x"][0]
 
@@ -312,7 +312,7 @@ def read_particles(out):
 
 def parallel(args):
     deck = os.path.join(ROOT, args.deck)
-    extra = ["-mpm_max_steps", str(args.steps), "-output_interval", "0", *args.extra.split()]
+    extra = ["-max_steps", str(args.steps), "-output_interval", "0", *args.extra.split()]
     failures = []
     with tempfile.TemporaryDirectory() as out1, tempfile.TemporaryDirectory() as out2:
         s1 = run(args.burst, deck, out1, extra)
@@ -343,7 +343,7 @@ def parallel(args):
 
 def deck(args):
     with tempfile.TemporaryDirectory() as out:
-        s = run(args.burst, os.path.join(ROOT, args.deck), out, ["-mpm_max_steps", str(args.steps), *args.extra.split()], ranks=args.ranks)
+        s = run(args.burst, os.path.join(ROOT, args.deck), out, ["-max_steps", str(args.steps), *args.extra.split()], ranks=args.ranks)
         ok = s["steps"] >= 1 and s["particles"] > 0 and os.path.exists(os.path.join(out, "particles.xmf"))
     print(f"deck {args.deck} on {args.ranks} rank(s): {s['steps']} steps, {s['particles']} particles, "
           f"energy balance error {s['energy_balance_error']:.2e} {'OK' if ok else 'FAIL'}")

@@ -8,7 +8,7 @@
 namespace burst {
 
 // dt = cfl min_p min_d h_d / (c_p + |v_p,d|), reduced over ranks; capped by -mpm_dt_max and so that
-// the last step ends at -mpm_final_time. -mpm_dt fixes it instead.
+// the last step ends at -final_time. -mpm_dt fixes it instead.
 PetscErrorCode ComputeTimeStep(Simulation &sim)
 {
   PetscInt         n, dim = sim.grid.dim;
