@@ -1,5 +1,5 @@
 static const char help[] = "burst: material point method (MPM) for metal containers that deform, fail and fragment under\n"
-                           "high-rate loading. Configure a run with PETSc options, usually an option file:\n"
+                           "high-rate loading, and multi-material ICE for the gases on the same grid. Configure a run with PETSc options, usually an option file:\n"
                            "  build/burst -options_file options/scenes/colliding_disks.opts\n"
                            "Units are SI throughout (m, kg, s, Pa, K).\n\n";
 
@@ -14,6 +14,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "mpm/geometry.hpp"
 #include "mpm/analytic.hpp"
 #include "util.hpp"
+#include "ice/ice.hpp"
 
 using namespace burst;
 
@@ -54,17 +55,26 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(ReadGeometries(sim));
   PetscCall(CreateAnalyticSolution(sim));
   PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, "failed"), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
+  // 3. The gas, on cells of the same grid (null without -ice_materials)
+  {
+    const Grid &g = sim.grid;
+    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes};
+    PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
+  }
   if (sim.help) {
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  // 3. Particles
-  PetscCall(CreateSwarm(sim));
-  PetscCall(SeedParticles(sim));
-  PetscCall(ApplyAnalyticInitialCondition(sim));
-  PetscCall(MigrateParticles(sim));
-  PetscCall(ComputeInitialWaveSpeed(sim));
-  PetscCall(CheckParticleState(sim, "seeding"));
+  PetscCheck(!sim.materials.empty() || sim.ice, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
+  // 4. Particles, when the scene has solids
+  if (!sim.materials.empty()) {
+    PetscCall(CreateSwarm(sim));
+    PetscCall(SeedParticles(sim));
+    PetscCall(ApplyAnalyticInitialCondition(sim));
+    PetscCall(MigrateParticles(sim));
+    PetscCall(ComputeInitialWaveSpeed(sim));
+    PetscCall(CheckParticleState(sim, "seeding"));
+  }
   PetscCall(OutputSetUp(sim));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -80,6 +90,22 @@ static PetscErrorCode View(Simulation &sim)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.final_time));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.total_particles));
   for (auto &m : sim.materials) PetscCall(m->View(viewer));
+  if (sim.ice) PetscCall(IceView(*sim.ice, viewer));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Particles (HDF5/XDMF) and, for a gas run along x (one cell in the other directions), the gas
+// profile: profile_<step>.csv at every output and profile.csv at the end.
+static PetscErrorCode WriteAllOutput(Simulation &sim, bool last)
+{
+  PetscFunctionBeginUser;
+  if (sim.HasParticles()) PetscCall(WriteOutput(sim));
+  if (sim.ice && sim.grid.cells[1] == 1 && (sim.grid.dim == 2 || sim.grid.cells[2] == 1)) {
+    char name[64];
+    PetscCall(PetscSNPrintf(name, sizeof(name), "/profile_%06" PetscInt_FMT ".csv", sim.step));
+    PetscCall(IceWriteProfile(*sim.ice, sim.output_dir + name, sim.time, sim.step));
+    if (last) PetscCall(IceWriteProfile(*sim.ice, sim.output_dir + "/profile.csv", sim.time, sim.step));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -90,7 +116,7 @@ static PetscErrorCode Run(Simulation &sim)
   PetscCall(MonitorSetUp(sim));
   PetscCall(Monitor(sim, PETSC_TRUE));
   PetscCall(PetscLogStagePush(sim.stage_output));
-  PetscCall(WriteOutput(sim));
+  PetscCall(WriteAllOutput(sim, false));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&sim.wall_start));
   while (sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps) {
@@ -102,11 +128,11 @@ static PetscErrorCode Run(Simulation &sim)
     sim.wall_stepping += t1 - t0;
     const bool last = !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
-    PetscCall(FragmentsMonitor(sim));
+    if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
     if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
       PetscCall(PetscLogStagePush(sim.stage_output));
-      PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
-      PetscCall(WriteOutput(sim));
+      if (sim.HasParticles()) PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
+      PetscCall(WriteAllOutput(sim, last));
       PetscCall(PetscLogStagePop());
     }
   }
@@ -134,9 +160,11 @@ int main(int argc, char **argv)
         PetscCall(View(sim));
         PetscCall(Run(sim));
       }
+      PetscCall(IceDestroy(&sim.ice));
     }
   }
   PetscCall(MaterialRegistryDestroy());
+  PetscCall(GasEOSRegistryDestroy());
   PetscCall(PetscFinalize());
   return 0;
 }

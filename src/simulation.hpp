@@ -58,6 +58,9 @@ struct LoadCurve {
 // The analytic solutions used for verification (bar mode, manufactured solutions).
 class AnalyticSolution;
 
+// The gas solver (src/ice/): its own state, null when the scene has no gas materials.
+struct IceSolver;
+
 // A geometry object from which particles are seeded (src/seed.cxx).
 struct Geometry;
 
@@ -146,6 +149,8 @@ struct Simulation {
   std::vector<std::unique_ptr<Geometry>>  geometries;
   std::vector<LoadCurve>                  load_curves;
   std::unique_ptr<AnalyticSolution>       analytic;
+  IceSolver                              *ice = nullptr; // owned by the driver (burst.cxx)
+  bool HasParticles() const { return swarm != nullptr; }
 
   // State
   PetscInt  step = 0;

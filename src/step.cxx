@@ -1,22 +1,27 @@
-// One explicit MPM time step: the ordered list of phases.
+// One time step: the ordered list of phases, MPM and ICE (ice.md 1.2).
 //
+// MPM (a scene with solids):
 //   USL  (update stress last, the default; Uintah's order, Wallstedt & Guilkey 2008):
 //        P2G(m, mv, f) -> grid update + BCs -> G2P(v, x, L, F) -> stress -> migrate
 //   MUSL (modified USL, Sulsky et al. 1995): after the velocity G2P, momentum goes back to the grid
 //        and the position and L come from that remapped velocity.
 //   USF  (update stress first): P2G(m, mv) -> grid velocity -> G2P(L, F) -> stress -> P2G(f) ->
 //        grid update -> G2P(v, x)
+// ICE (a scene with gases), rows 4 and 7-17 of ice.md 1.2:
+//   equilibration pressure -> face velocities + face exchange -> pressure (explicit or KSP) ->
+//   face pressure, momentum and energy sources, Lagrangian values -> cell exchange, Lagrangian
+//   specific volume -> advection, conserved to primitive
 //
-// Every phase is a named function with its own PetscLogEvent; a coupled solver (ICE) interleaves
-// its phases between these calls (ice.md 1.2).
+// Every phase is a named function with its own PetscLogEvent. The two solvers meet only in the
+// time step here until src/coupling/ joins them.
 #include "simulation.hpp"
+#include "ice/ice.hpp"
 
 namespace burst {
 
-PetscErrorCode TakeStep(Simulation &sim)
+static PetscErrorCode MPMStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(ComputeTimeStep(sim));
   PetscCall(ComputeExternalForces(sim));
   switch (sim.scheme) {
   case StepScheme::USL:
@@ -45,6 +50,48 @@ PetscErrorCode TakeStep(Simulation &sim)
     break;
   }
   PetscCall(MigrateParticles(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
+{
+  PetscFunctionBeginUser;
+  ice.dt = dt;
+  PetscCall(IceEquilibrate(ice));
+  PetscCall(IceFaceVelocities(ice));
+  PetscCall(IceUpdatePressure(ice));
+  PetscCall(IceSources(ice));
+  PetscCall(IceCellExchange(ice));
+  PetscCall(IceAdvect(ice));
+  ice.time += dt;
+  ice.step += 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The step size: the smaller of the MPM and gas limits, ending exactly at -final_time.
+static PetscErrorCode StableTimeStep(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  sim.dt = PETSC_MAX_REAL;
+  if (sim.HasParticles()) PetscCall(ComputeTimeStep(sim));
+  if (sim.ice) {
+    PetscReal dt_gas;
+    PetscCall(IceComputeTimeStep(*sim.ice, &dt_gas));
+    sim.dt = PetscMin(sim.dt, PetscMin(dt_gas, sim.dt_max));
+    if (sim.dt_fixed > 0) sim.dt = sim.dt_fixed;
+    PetscCheck(sim.dt > 0 && sim.dt < PETSC_MAX_REAL, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive", sim.step, (double)sim.dt);
+    const PetscReal remaining = sim.final_time - sim.time;
+    if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode TakeStep(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  PetscCall(StableTimeStep(sim));
+  if (sim.HasParticles()) PetscCall(MPMStep(sim));
+  if (sim.ice) PetscCall(ICEStep(*sim.ice, sim.dt));
   sim.time += sim.dt;
   sim.step += 1;
   sim.particle_steps += sim.total_particles;

@@ -6,6 +6,7 @@
 #include "../simulation.hpp"
 #include "mpm/swarm_access.hpp"
 #include "mpm/analytic.hpp"
+#include "ice/ice.hpp"
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -24,6 +25,8 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   const PetscReal *v, *m, *e;
   PetscReal        local[8] = {0, 0, 0, 0, 0, 0, 0, 0}, global[8];
   PetscFunctionBeginUser;
+  r = EnergyReport{};
+  if (!sim.HasParticles()) PetscFunctionReturn(PETSC_SUCCESS); // a gas-only scene
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
   PetscCall(fields.Get(field::velocity, &v));
@@ -149,6 +152,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy,plastic_work,heat,viscous_work,stored_elastic,unaccounted");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
+    if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations");
     std::fprintf(csv, "\n");
   }
   PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
@@ -179,6 +183,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     sim.diag.last_error_displacement = rms;
   }
   if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
+  IceTotals gas;
+  if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
   PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   if (!sim.rank && csv) {
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
@@ -186,6 +192,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.track_pid >= 0)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
+    if (sim.ice)
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy, (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
     std::fprintf(csv, "\n");
     std::fflush(csv);
   }
@@ -201,6 +209,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
   const PetscInt bytes = sim.swarm_bytes;
   PetscReal rms = 0, max = 0;
   if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
+  IceTotals gas;
+  if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
   const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
@@ -242,7 +252,17 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"viscous_work\": " << r.viscous_work << ",\n";
   s << "  \"stored_elastic_energy\": " << r.stored_elastic << ",\n";
   s << "  \"unaccounted_internal_energy\": " << r.unaccounted << ",\n";
-  PetscCall(FragmentsSummary(sim, s));
+  if (sim.HasParticles()) PetscCall(FragmentsSummary(sim, s));
+  if (sim.ice) {
+    const IceTotals &g0 = sim.ice->initial;
+    const PetscReal  e0 = g0.internal_energy + g0.kinetic_energy, e = gas.internal_energy + gas.kinetic_energy;
+    s << "  \"gas\": {\"materials\": " << sim.ice->nmat << ", \"mass\": " << gas.mass << ", \"mass_change\": " << (gas.mass - g0.mass) / g0.mass;
+    s << ", \"momentum\": [" << gas.momentum[0] << ", " << gas.momentum[1] << ", " << gas.momentum[2] << "]";
+    s << ", \"internal_energy\": " << gas.internal_energy << ", \"kinetic_energy\": " << gas.kinetic_energy << ", \"total_energy\": " << e << ", \"total_energy_change\": " << (e - e0) / e0;
+    s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
+    const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
+    s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
+  }
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
   s << "  \"particle_steps_per_second\": " << rate << ",\n";

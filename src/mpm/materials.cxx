@@ -14,10 +14,9 @@ PetscErrorCode CreateMaterials(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(MaterialRegisterAll());
   PetscOptionsBegin(sim.comm, "", "Materials", "Materials");
-  PetscCall(PetscOptionsStringArray("-materials", "Names of the materials; each is configured with -<name>_model and its parameters", "", names, &n, &set));
+  PetscCall(PetscOptionsStringArray("-materials", "Names of the solid (MPM) materials; each is configured with -<name>_model and its parameters. None: no particles", "", names, &n, &set));
   PetscOptionsEnd();
-  if (sim.help && !(set && n > 0)) PetscFunctionReturn(PETSC_SUCCESS); // -help without a scene: list the global options only
-  PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,name2,... and -<name>_model for each");
+  if (!(set && n > 0)) PetscFunctionReturn(PETSC_SUCCESS); // no solids (a gas-only scene, or -help without a scene)
   PetscReal densest = 0;
   for (PetscInt i = 0; i < n; ++i) {
     Material *m;

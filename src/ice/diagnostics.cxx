@@ -1,0 +1,101 @@
+// Gas totals for the monitor (mass, momentum, internal and kinetic energy) and the profile of a
+// run along x (profile.csv), written atomically by rank 0.
+#include "ice.hpp"
+#include <algorithm>
+#include <cstdio>
+
+namespace burst {
+
+PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
+{
+  PetscScalar *a;
+  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6];
+  PetscFunctionBeginUser;
+  PetscCall(IceGetLocalArray(ice, &a));
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt m = 0; m < ice.nmat; ++m) {
+          const PetscReal M = c[ice.Offset(m, icef::rho)] * V;
+          PetscReal       u2 = 0;
+          local[0] += M;
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscReal u = c[ice.Offset(m, icef::vel + d)];
+            local[1 + d] += M * u;
+            u2 += u * u;
+          }
+          local[4] += M * ice.materials[m].eos->cv * c[ice.Offset(m, icef::temp)];
+          local[5] += 0.5 * M * u2;
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCallMPI(MPI_Allreduce(local, global, 6, MPIU_REAL, MPI_SUM, ice.comm));
+  t.mass = global[0];
+  for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
+  t.internal_energy = global[4];
+  t.kinetic_energy  = global[5];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// profile.csv: x, pressure, then per material density (bulk, M/V), x-velocity, temperature and
+// volume fraction, one row per cell of the first row of cells along x (j = k = 0).
+PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscReal time, PetscInt step)
+{
+  PetscScalar *a;
+  PetscMPIInt  rank, size;
+  const int    per_cell = 2 + 4 * (int)ice.nmat;
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(ice.comm, &rank));
+  PetscCallMPI(MPI_Comm_size(ice.comm, &size));
+  std::vector<PetscReal> rows;
+  PetscCall(IceGetLocalArray(ice, &a));
+  if (ice.xs[1] == 0 && ice.xs[2] == 0)
+    for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+      const PetscScalar *c = a + ice.LocalIndex(i, 0, 0) * ice.stride;
+      rows.push_back(ice.lower[0] + (i + 0.5) * ice.h[0]);
+      rows.push_back(c[ice.CellOffset(icef::press)]);
+      for (PetscInt m = 0; m < ice.nmat; ++m) {
+        rows.push_back(c[ice.Offset(m, icef::rho)]);
+        rows.push_back(c[ice.Offset(m, icef::vel)]);
+        rows.push_back(c[ice.Offset(m, icef::temp)]);
+        rows.push_back(c[ice.Offset(m, icef::theta)]);
+      }
+    }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  int              count = (int)rows.size();
+  std::vector<int> counts(size), displs(size);
+  PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, ice.comm));
+  std::vector<PetscReal> all;
+  if (!rank) {
+    int total = 0;
+    for (int r = 0; r < size; ++r) {
+      displs[r] = total;
+      total += counts[r];
+    }
+    all.resize(total);
+  }
+  PetscCallMPI(MPI_Gatherv(rows.data(), count, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, 0, ice.comm));
+  if (!rank) {
+    const size_t        ncells = all.size() / per_cell;
+    std::vector<size_t> order(ncells);
+    for (size_t r = 0; r < ncells; ++r) order[r] = r;
+    std::sort(order.begin(), order.end(), [&](size_t p, size_t q) { return all[p * per_cell] < all[q * per_cell]; });
+    const std::string tmp = file + ".tmp";
+    FILE             *fp  = std::fopen(tmp.c_str(), "w");
+    PetscCheck(fp, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not write %s", tmp.c_str());
+    std::fprintf(fp, "# time %.17g step %" PetscInt_FMT "\nx,pressure", (double)time, step);
+    for (const IceMaterial &m : ice.materials) std::fprintf(fp, ",%s_density,%s_velocity,%s_temperature,%s_volume_fraction", m.name.c_str(), m.name.c_str(), m.name.c_str(), m.name.c_str());
+    std::fprintf(fp, "\n");
+    for (size_t r : order) {
+      for (int q = 0; q < per_cell; ++q) std::fprintf(fp, q ? ",%.17g" : "%.17g", (double)all[r * per_cell + q]);
+      std::fprintf(fp, "\n");
+    }
+    PetscCheck(std::fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
+    PetscCheck(std::rename(tmp.c_str(), file.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s", tmp.c_str(), file.c_str());
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

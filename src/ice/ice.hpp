@@ -1,0 +1,186 @@
+// The gas half of burst: multi-material ICE (Kashiwa & Rauenzahn 1994; ice.md 1) on a cell-centred
+// DMDA that shares the ownership of the MPM node DMDA (petsc.md 5.5).
+//
+// One step (ice.md 1.2, the rows without MPM) is, in order, one file each in src/ice/:
+//   equilibration.cxx   per-cell pressure with sum(theta) = 1 (Newton, bisection fallback)
+//   face_velocity.cxx   face velocities from the pressure gradient, then face momentum exchange
+//   pressure.cxx        explicit pressure update, or the semi-implicit KSP solve (outer iteration)
+//   sources.cxx         face pressure, momentum and energy sources, Lagrangian values
+//   exchange.cxx        implicit cell exchange of momentum and heat, Lagrangian specific volume
+//   advection.cxx       first- or second-order limited advection, conserved -> primitive
+//   boundary.cxx        ghost cells: wall, symmetry, outflow, inflow; ghost exchange
+//   timestep.cxx        the ICE CFL condition
+// and setup.cxx (options, materials, initial state) and diagnostics.cxx (totals, profile.csv).
+//
+// All state is cell-centred and every material lives in every cell (a tiny mass where absent,
+// ice.md 7.1). This header knows nothing of MPM: the driver passes the node DMDA for its ownership.
+#pragma once
+#include "../petsc_compat.hpp"
+#include "../../models/gas_eos/gas_eos.hpp"
+#include <petscdmda.h>
+#include <petscksp.h>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace burst {
+
+enum class IceBC : int { Wall = 0, Symmetry = 1, Outflow = 2, Inflow = 3 };
+enum class IcePressureSolver : int { Explicit = 0, SemiImplicit = 1 };
+enum class RiemannShape : int { Planar = 0, Cylinder = 1, Sphere = 2 };
+extern const char *const IceBCNames[];
+extern const char *const IcePressureSolverNames[];
+extern const char *const RiemannShapeNames[];
+
+// Most materials a cell holds (small dense exchange solves on the stack).
+inline constexpr int kIceMaxMaterials = 8;
+
+struct IceMaterial {
+  std::string             name;
+  std::unique_ptr<GasEOS> eos;
+  PetscReal               density = -1;     // initial material density, kg/m^3
+  PetscReal               temperature = -1; // initial temperature, K
+  PetscReal               velocity[3] = {0, 0, 0};
+  PetscReal               volume_fraction = -1; // -ice_uniform_volume_fraction (else 1 where present)
+};
+
+// Field offsets in the cell DMDA: a block of kMatFields per material, then the cell fields.
+namespace icef {
+inline constexpr int rho = 0;       // bulk density M_m/V, kg/m^3
+inline constexpr int vel = 1;       // velocity, 3 components (unused ones 0), m/s
+inline constexpr int temp = 4;      // temperature, K
+inline constexpr int spvol = 5;     // specific volume of the material, 1/rho_micro, m^3/kg
+inline constexpr int theta = 6;     // volume fraction
+inline constexpr int kappa = 7;     // isentropic compressibility v/c^2, 1/Pa
+inline constexpr int work_p = 8;    // T (dP/dT)_rho: the pressure that does compression work, Pa
+inline constexpr int alpha = 9;     // thermal expansivity, 1/K
+inline constexpr int sound2 = 10;   // sound speed squared, m^2/s^2
+inline constexpr int rho_L = 11;    // Lagrangian bulk density, kg/m^3
+inline constexpr int vel_L = 12;    // Lagrangian (after sources and exchange) velocity, 3 components
+inline constexpr int temp_L = 15;   // Lagrangian temperature, K
+inline constexpr int spvol_L = 16;  // Lagrangian specific volume, m^3/kg
+inline constexpr int kMatFields = 17;
+// cell fields after the material blocks
+inline constexpr int press = 0;     // pressure at the end of the step (p^{n+1}), Pa
+inline constexpr int press_eq = 1;  // equilibration pressure of this step, Pa
+inline constexpr int dp_dil = 2;    // dilatational pressure change of this step, Pa
+inline constexpr int sum_kappa = 3; // sum_m theta_m kappa_m, 1/Pa
+inline constexpr int kCellFields = 4;
+} // namespace icef
+
+struct IceFaceBC {
+  IceBC     type = IceBC::Wall;
+  PetscInt  material = 0;           // inflow: the material that flows in
+  PetscReal state[5] = {0, 0, 0, 0, 0}; // inflow: density, velocity (3), temperature
+};
+
+struct IceTotals {
+  PetscReal mass = 0, momentum[3] = {0, 0, 0}, internal_energy = 0, kinetic_energy = 0;
+};
+
+struct IceSolver {
+  MPI_Comm comm = PETSC_COMM_WORLD;
+  PetscInt dim = 2;
+  PetscInt cells[3] = {1, 1, 1};
+  PetscReal lower[3] = {0, 0, 0}, h[3] = {1, 1, 1};
+  std::vector<IceMaterial> materials;
+  PetscInt nmat = 0;
+  PetscReal exchange_K[kIceMaxMaterials][kIceMaxMaterials] = {}; // momentum exchange, kg/(m^3 s)
+  PetscReal exchange_H[kIceMaxMaterials][kIceMaxMaterials] = {}; // heat exchange, W/(m^3 K)
+  IceFaceBC bc[3][2];
+
+  // Options
+  IcePressureSolver pressure_solver = IcePressureSolver::Explicit;
+  PetscInt  advection_order = 2;
+  PetscBool compatible_fluxes = PETSC_TRUE;
+  PetscReal cfl = 0.25;
+  PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit
+  PetscReal dt_fixed = 0;            // -ice_dt
+  PetscReal rho_tiny = 1e-12;        // fraction of the material density kept where it is absent
+  PetscReal outer_tolerance = 1e-8;  // semi-implicit: max |residual| / V over cells
+  PetscInt  outer_max_iterations = 20;
+  PetscInt  equilibration_max_iterations = 100;
+  PetscReal gravity[3] = {0, 0, 0};
+
+  // Grid objects
+  DM  da = nullptr;       // cell DMDA, BOX, width 2, dof = nmat * kMatFields + kCellFields
+  DM  da_p = nullptr;     // pressure DMDA, STAR, width 1, dof 1, same ownership
+  Vec state = nullptr, local = nullptr;
+  Mat A = nullptr;
+  KSP ksp = nullptr;
+  Vec dp = nullptr, rhs = nullptr;
+  PetscInt stride = 0;
+  PetscInt xs[3] = {0, 0, 0}, xm[3] = {1, 1, 1};   // owned cells
+  PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1}; // local (ghosted) box
+  PetscInt lstride[3] = {1, 1, 1};                // index stride of the local box per direction
+
+  // Per-step face data for the local box: value of the LOWER face of each local cell, per
+  // direction and material: velocity after exchange, before exchange, effective specific volume.
+  std::vector<PetscReal> face_vel[3], face_vel_star[3], face_spvol[3], face_spvol_eff[3];
+  // Work arrays for advection (gradients, fluxes) and the semi-implicit solve.
+  std::vector<PetscReal> work_grad, work_adv, work_outflow;
+
+  // Step state
+  PetscReal dt = 0, time = 0;
+  PetscInt  step = 0;
+  PetscInt  ksp_iterations = 0, outer_iterations = 0; // of the last step
+  PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
+  IceTotals initial;
+
+  PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;
+
+  PetscInt Offset(PetscInt m, PetscInt f) const { return m * icef::kMatFields + f; }
+  PetscInt CellOffset(PetscInt f) const { return nmat * icef::kMatFields + f; }
+  PetscInt LocalIndex(PetscInt i, PetscInt j, PetscInt k) const { return ((k - gxs[2]) * gxm[1] + (j - gxs[1])) * gxm[0] + (i - gxs[0]); }
+  PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
+  ~IceSolver();
+};
+
+// Set-up (setup.cxx). `nodes` is the MPM node DMDA whose ownership the cell DMDA copies;
+// grid_* describe the box. Reads every -ice_ option and the gas materials; *ice = null when the
+// scene lists no gas materials (-ice_materials).
+struct IceGridSpec {
+  PetscInt  dim;
+  PetscInt  cells[3];
+  PetscReal lower[3], h[3];
+  PetscReal gravity[3]; // m/s^2
+  DM        nodes;
+};
+PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
+PetscErrorCode IceSetInitialState(IceSolver &ice);
+PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer);
+PetscErrorCode IceDestroy(IceSolver **ice);
+
+// The phases of one step, in order (src/step.cxx calls them).
+PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt);
+PetscErrorCode IceEquilibrate(IceSolver &ice);
+PetscErrorCode IceFaceVelocities(IceSolver &ice);
+PetscErrorCode IceUpdatePressure(IceSolver &ice);
+PetscErrorCode IceSources(IceSolver &ice);
+PetscErrorCode IceCellExchange(IceSolver &ice);
+PetscErrorCode IceAdvect(IceSolver &ice);
+// The semi-implicit pressure (pressure_implicit.cxx), called by IceUpdatePressure.
+PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice);
+
+// Helpers shared by the phases.
+PetscErrorCode IceUpdateGhosts(IceSolver &ice);          // owned -> ghosts, then boundary ghosts
+PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a);
+void           IceBoundaryFaceVelocities(IceSolver &ice); // wall/symmetry/inflow face values
+PetscErrorCode IceGetLocalArray(IceSolver &ice, PetscScalar **a);
+PetscErrorCode IceRestoreLocalArray(IceSolver &ice, PetscScalar **a);
+// Face exchange of one face (ice.md 1.4) for the face at local index `idx` in direction d, from
+// u* (face_vel_star) and v-bar (face_spvol): writes face_vel and face_spvol_eff.
+void           IceFaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx);
+// Net outflow volume of every material through the faces of each owned cell relative to the
+// cell volume, sum_m sum_f theta_hat u_f A_f dt / V (theta_hat from the advection operator);
+// out[local index].
+PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vector<PetscReal> &out);
+// Advection increments (1/V) sum_f (in - out) for every owned cell of material m (face velocities
+// of this step): out[0][local index] for the density field `density` (bulk density, or theta),
+// out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
+// temperature, specific volume). The arrays are overwritten for owned cells.
+void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
+PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
+PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscReal time, PetscInt step);
+
+} // namespace burst

@@ -1,0 +1,422 @@
+// ICE set-up: options, gas materials, the cell and pressure DMDAs, and the initial state.
+//
+// The cell DMDA copies the node DMDA's process grid, with one cell fewer on the last rank of each
+// direction, so a cell and its lower node live on the same rank (petsc.md 5.5). Width 2 (BOX): the
+// second-order advection needs the limited gradient of a donor cell one ghost layer out.
+#include "ice.hpp"
+#include "../util.hpp"
+#include <cmath>
+#include <cstring>
+
+namespace burst {
+
+const char *const IceBCNames[]             = {"wall", "symmetry", "outflow", "inflow"};
+const char *const IcePressureSolverNames[] = {"explicit", "semi_implicit"};
+const char *const RiemannShapeNames[]      = {"planar", "cylinder", "sphere"};
+
+// The Riemann (two-state) initial condition, ice.md 6.1-6.2.
+struct RiemannSetup {
+  PetscBool    set = PETSC_FALSE;
+  PetscReal    left[3] = {1, 0, 1}, right[3] = {0.125, 0, 0.1}; // rho, u, p
+  PetscReal    position = 0.5, center[3] = {0, 0, 0};
+  PetscInt     left_material = 0, right_material = 0;
+  RiemannShape shape = RiemannShape::Planar;
+};
+
+static PetscErrorCode MaterialIndex(const IceSolver &ice, const char opt[], const char name[], PetscInt *index)
+{
+  PetscFunctionBeginUser;
+  std::string names;
+  for (PetscInt m = 0; m < ice.nmat; ++m) {
+    if (ice.materials[m].name == name) {
+      *index = m;
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
+    names += (m ? ", " : "") + ice.materials[m].name;
+  }
+  SETERRQ(ice.comm, PETSC_ERR_USER_INPUT, "Option %s = %s is not a gas material; valid choices (-ice_materials): %s", opt, name, names.c_str());
+}
+
+static PetscErrorCode ReadExchange(IceSolver &ice, PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal upper, PetscReal K[kIceMaxMaterials][kIceMaxMaterials])
+{
+  const PetscInt pairs = ice.nmat * (ice.nmat - 1) / 2;
+  PetscReal      values[kIceMaxMaterials * kIceMaxMaterials];
+  PetscInt       n = kIceMaxMaterials * kIceMaxMaterials;
+  PetscBool      set;
+  PetscFunctionBeginUser;
+  for (PetscInt i = 0; i < n; ++i) values[i] = 0;
+  PetscCall(PetscOptionsRealArray(opt, help, "", values, &n, &set));
+  if (set) PetscCheck(n == pairs || n == 1, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %" PetscInt_FMT " values (the upper triangle in -ice_materials order: 12,13,...,23,...) or one for every pair; got %" PetscInt_FMT, opt, pairs, n);
+  PetscInt k = 0;
+  for (PetscInt a = 0; a < ice.nmat; ++a)
+    for (PetscInt b = a + 1; b < ice.nmat; ++b, ++k) {
+      const PetscReal v = set ? (n == 1 ? values[0] : values[k]) : K[a][b];
+      PetscCall(CheckRange(ice.comm, opt, v, 0, upper, PETSC_FALSE));
+      K[a][b] = K[b][a] = v;
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs, PetscBool help)
+{
+  char     *names[kIceMaxMaterials];
+  PetscInt  n = kIceMaxMaterials;
+  PetscBool set;
+  int       choice;
+  char      buf[256];
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(ice.comm, "", "Gas (ICE)", "ICE");
+  PetscCall(PetscOptionsStringArray("-ice_materials", "Names of the gas (ICE) materials; each is configured with -<name>_eos_type and its parameters. None: no gas", "", names, &n, &set));
+  if (!set) n = 0;
+  PetscCheck(n <= kIceMaxMaterials, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists more than %d materials", kIceMaxMaterials);
+  for (PetscInt i = 0; i < n; ++i) {
+    for (PetscInt j = 0; j < i; ++j) PetscCheck(std::strcmp(names[i], names[j]), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s' twice", names[i]);
+    IceMaterial m;
+    m.name = names[i];
+    ice.materials.push_back(std::move(m));
+  }
+  for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i]));
+  ice.nmat = n;
+
+  choice = (int)ice.pressure_solver;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_pressure_solver", "Pressure update: explicit (ice.md 1.5) or semi_implicit (KSP on the cell DMDA, options under -ice_pressure_)", IcePressureSolverNames, 2, &choice, nullptr));
+  ice.pressure_solver = (IcePressureSolver)choice;
+  PetscCall(PetscOptionsInt("-ice_advection_order", "Advection: 1 (donor cell) or 2 (limited linear reconstruction, van Leer)", "", ice.advection_order, &ice.advection_order, nullptr));
+  PetscCheck(ice.advection_order == 1 || ice.advection_order == 2, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_advection_order = %" PetscInt_FMT " is not supported: valid choices are 1 and 2", ice.advection_order);
+  PetscCall(PetscOptionsBool("-ice_compatible_fluxes", "Second order: compatible fluxes for velocity, temperature and specific volume (VanderHeyden & Kashiwa 1998)", "", ice.compatible_fluxes, &ice.compatible_fluxes, nullptr));
+  PetscCall(PetscOptionsReal("-ice_cfl", "Gas Courant number: dt = cfl min_d h_d/(k c + |u_d|), in (0, 1]", "", ice.cfl, &ice.cfl, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_cfl", ice.cfl, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-ice_sound_speed_knob", "k in the gas CFL, in [0, 1]; default 1 explicit, 0.5 semi-implicit", "", ice.sound_speed_knob, &ice.sound_speed_knob, &set));
+  if (set) PetscCall(CheckRange(ice.comm, "-ice_sound_speed_knob", ice.sound_speed_knob, 0, 1, PETSC_FALSE));
+  else ice.sound_speed_knob = ice.pressure_solver == IcePressureSolver::Explicit ? 1.0 : 0.5;
+  PetscCall(PetscOptionsReal("-ice_dt", "Fixed gas time step (s) instead of the CFL rule; 0 = CFL rule", "", ice.dt_fixed, &ice.dt_fixed, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_dt", ice.dt_fixed, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-ice_rho_tiny", "Mass of an absent material as a fraction of its density times the cell volume (ice.md 7.1)", "", ice.rho_tiny, &ice.rho_tiny, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_rho_tiny", ice.rho_tiny, 0, 1e-3, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-ice_outer_tolerance", "Semi-implicit: outer iterations stop when max_c |residual_c|/V < this (relative volume)", "", ice.outer_tolerance, &ice.outer_tolerance, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_outer_tolerance", ice.outer_tolerance, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-ice_outer_max_iterations", "Semi-implicit: most outer iterations per step", "", ice.outer_max_iterations, &ice.outer_max_iterations, nullptr));
+  PetscCheck(ice.outer_max_iterations >= 1, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_outer_max_iterations = %" PetscInt_FMT " is out of range: it must be >= 1", ice.outer_max_iterations);
+
+  // Boundary conditions per domain face
+  const char *face_opt[3][2]    = {{"-ice_bc_xmin", "-ice_bc_xmax"}, {"-ice_bc_ymin", "-ice_bc_ymax"}, {"-ice_bc_zmin", "-ice_bc_zmax"}};
+  const char *inflow_opt[3][2]  = {{"-ice_inflow_xmin", "-ice_inflow_xmax"}, {"-ice_inflow_ymin", "-ice_inflow_ymax"}, {"-ice_inflow_zmin", "-ice_inflow_zmax"}};
+  const char *inflow_mat[3][2]  = {{"-ice_inflow_xmin_material", "-ice_inflow_xmax_material"}, {"-ice_inflow_ymin_material", "-ice_inflow_ymax_material"}, {"-ice_inflow_zmin_material", "-ice_inflow_zmax_material"}};
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      IceFaceBC &bc = ice.bc[d][s];
+      choice        = (int)bc.type;
+      PetscCall(OptionsChoice(PetscOptionsObject, face_opt[d][s], "Gas boundary condition on this face: wall (reflective), symmetry, outflow (zero gradient), inflow (prescribed state)", IceBCNames, 4, &choice, nullptr));
+      bc.type = (IceBC)choice;
+      PetscReal state[5] = {0, 0, 0, 0, 0};
+      PetscInt  ns       = 5;
+      PetscCall(PetscOptionsRealArray(inflow_opt[d][s], "Inflow state: density (kg/m^3), velocity (m/s, dim values), temperature (K)", "", state, &ns, &set));
+      if (bc.type == IceBC::Inflow) {
+        PetscCheck(set && ns == ice.dim + 2, ice.comm, PETSC_ERR_USER_INPUT, "Option %s inflow needs %s with %" PetscInt_FMT " values: density, velocity (%" PetscInt_FMT " components), temperature", face_opt[d][s], inflow_opt[d][s], ice.dim + 2, ice.dim);
+        PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
+        PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[ice.dim + 1], 0, PETSC_MAX_REAL, PETSC_TRUE));
+        bc.state[0] = state[0];
+        for (PetscInt c = 0; c < ice.dim; ++c) bc.state[1 + c] = state[1 + c];
+        bc.state[4] = state[ice.dim + 1];
+      }
+      PetscCall(PetscOptionsString(inflow_mat[d][s], "Inflow: the gas material that flows in (default: the first)", "", "", buf, sizeof(buf), &set));
+      if (set && ice.nmat) PetscCall(MaterialIndex(ice, inflow_mat[d][s], buf, &bc.material));
+    }
+
+  // Exchange coefficients (ice.md 1.8): the upper triangle in material order
+  if (ice.nmat > 1 || help) {
+    for (PetscInt a = 0; a < kIceMaxMaterials; ++a)
+      for (PetscInt b = 0; b < kIceMaxMaterials; ++b) {
+        ice.exchange_K[a][b] = a == b ? 0 : 1e15;
+        ice.exchange_H[a][b] = a == b ? 0 : 1e10;
+      }
+    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_momentum", "Momentum exchange coefficients K_ij (kg/(m^3 s)), upper triangle in -ice_materials order, or one value for all pairs; <= 1e20", 1e20, ice.exchange_K));
+    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_heat", "Heat exchange coefficients H_ij (W/(m^3 K)), upper triangle, or one value for all pairs; <= 1e15", 1e15, ice.exchange_H));
+  }
+
+  // Initial state: a Riemann problem, or every material uniform
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-ice_riemann_left", "Riemann problem: left (inside) state rho (kg/m^3), u (m/s, along x or radial), p (Pa)", rs.left, 3, &rs.set));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-ice_riemann_right", "Riemann problem: right (outside) state rho (kg/m^3), u (m/s), p (Pa)", rs.right, 3, &set));
+  rs.set = (PetscBool)(rs.set || set);
+  PetscCall(PetscOptionsReal("-ice_riemann_position", "Riemann problem: diaphragm x (planar) or radius (cylinder, sphere), m", "", rs.position, &rs.position, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-ice_riemann_center", "Riemann problem: centre of the cylinder or sphere (m, 3 values)", rs.center, 3, nullptr));
+  choice = (int)rs.shape;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_riemann_shape", "Riemann problem: planar diaphragm normal to x, or a cylinder (about z) or sphere of the left state", RiemannShapeNames, 3, &choice, nullptr));
+  rs.shape = (RiemannShape)choice;
+  PetscCall(PetscOptionsString("-ice_riemann_left_material", "Riemann problem: the gas on the left (default: the first)", "", "", buf, sizeof(buf), &set));
+  if (set && ice.nmat) PetscCall(MaterialIndex(ice, "-ice_riemann_left_material", buf, &rs.left_material));
+  PetscCall(PetscOptionsString("-ice_riemann_right_material", "Riemann problem: the gas on the right (default: the left one)", "", "", buf, sizeof(buf), &set));
+  rs.right_material = rs.left_material;
+  if (set && ice.nmat) PetscCall(MaterialIndex(ice, "-ice_riemann_right_material", buf, &rs.right_material));
+  if (rs.set) {
+    PetscCall(CheckRange(ice.comm, "-ice_riemann_left (density)", rs.left[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(ice.comm, "-ice_riemann_left (pressure)", rs.left[2], 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(ice.comm, "-ice_riemann_right (density)", rs.right[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(ice.comm, "-ice_riemann_right (pressure)", rs.right[2], 0, PETSC_MAX_REAL, PETSC_TRUE));
+  }
+  {
+    PetscReal fractions[kIceMaxMaterials];
+    PetscInt  nf = kIceMaxMaterials;
+    PetscCall(PetscOptionsRealArray("-ice_uniform_volume_fraction", "Without a Riemann problem: the volume fraction of each gas material in every cell (must sum to 1; default 1 for the first, 0 for the others)", "", fractions, &nf, &set));
+    for (PetscInt m = 0; m < ice.nmat; ++m) ice.materials[m].volume_fraction = m == 0 ? 1 : 0;
+    if (set) {
+      PetscCheck(nf == ice.nmat, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_uniform_volume_fraction needs %" PetscInt_FMT " values (one per -ice_materials entry), got %" PetscInt_FMT, ice.nmat, nf);
+      PetscReal sum = 0;
+      for (PetscInt m = 0; m < ice.nmat; ++m) {
+        PetscCall(CheckRange(ice.comm, "-ice_uniform_volume_fraction", fractions[m], 0, 1, PETSC_FALSE));
+        ice.materials[m].volume_fraction = fractions[m];
+        sum += fractions[m];
+      }
+      PetscCheck(std::fabs(sum - 1) < 1e-10, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_uniform_volume_fraction: the volume fractions sum to %.12g; they must sum to 1", (double)sum);
+    }
+  }
+  PetscOptionsEnd();
+
+  // Per material: the equation of state and the uniform initial state
+  for (IceMaterial &m : ice.materials) {
+    GasEOS     *eos;
+    std::string prefix = m.name + "_";
+    PetscCall(GasEOSCreate(ice.comm, m.name.c_str(), &eos));
+    m.eos.reset(eos);
+    PetscOptionsBegin(ice.comm, prefix.c_str(), "Gas material initial state", "ICE");
+    PetscCall(PetscOptionsReal("-density", "Initial material density (kg/m^3), > 0 (uniform initial state; with a Riemann problem the density of the absent side's tiny mass)", "", m.density, &m.density, &set));
+    PetscCall(PetscOptionsReal("-temperature", "Initial temperature (K), > 0", "", m.temperature, &m.temperature, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s), one value per dimension", m.velocity, ice.dim, nullptr));
+    PetscOptionsEnd();
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
+{
+  PetscInt        m, n, p;
+  const PetscInt *lnode[3] = {nullptr, nullptr, nullptr};
+  std::vector<PetscInt> lcell[3];
+  PetscFunctionBeginUser;
+  PetscCall(DMDAGetInfo(nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(nodes, &lnode[0], &lnode[1], &lnode[2]));
+  const PetscInt procs[3] = {m, n, p};
+  for (PetscInt d = 0; d < ice.dim; ++d) {
+    lcell[d].assign(lnode[d], lnode[d] + procs[d]);
+    lcell[d].back() -= 1; // the last node of each direction starts no cell
+    for (PetscInt r = 0; r < procs[d]; ++r)
+      PetscCheck(lcell[d][r] >= 2 || procs[d] == 1, ice.comm, PETSC_ERR_USER_INPUT, "Gas: rank slot %" PetscInt_FMT " owns %" PetscInt_FMT " cell(s) in direction %" PetscInt_FMT "; the gas solver needs at least 2 per rank: use fewer ranks or more cells", r, lcell[d][r], d);
+  }
+  ice.stride = ice.nmat * icef::kMatFields + icef::kCellFields;
+  const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
+  if (ice.dim == 2) {
+    PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_BOX, ice.cells[0], ice.cells[1], m, n, ice.stride, 2, lcell[0].data(), lcell[1].data(), &ice.da));
+    if (ice.pressure_solver == IcePressureSolver::SemiImplicit)
+      PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], m, n, 1, 1, lcell[0].data(), lcell[1].data(), &ice.da_p));
+  } else {
+    PetscCall(DMDACreate3d(ice.comm, bt, bt, bt, DMDA_STENCIL_BOX, ice.cells[0], ice.cells[1], ice.cells[2], m, n, p, ice.stride, 2, lcell[0].data(), lcell[1].data(), lcell[2].data(), &ice.da));
+    if (ice.pressure_solver == IcePressureSolver::SemiImplicit)
+      PetscCall(DMDACreate3d(ice.comm, bt, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], ice.cells[2], m, n, p, 1, 1, lcell[0].data(), lcell[1].data(), lcell[2].data(), &ice.da_p));
+  }
+  PetscCall(DMSetUp(ice.da));
+  PetscCall(DMDASetUniformCoordinates(ice.da, ice.lower[0] + 0.5 * ice.h[0], ice.lower[0] + (ice.cells[0] - 0.5) * ice.h[0], ice.lower[1] + 0.5 * ice.h[1], ice.lower[1] + (ice.cells[1] - 0.5) * ice.h[1], ice.lower[2] + 0.5 * ice.h[2], ice.lower[2] + (ice.cells[2] - 0.5) * ice.h[2]));
+  PetscCall(DMCreateGlobalVector(ice.da, &ice.state));
+  PetscCall(DMCreateLocalVector(ice.da, &ice.local));
+  PetscCall(PetscObjectSetName((PetscObject)ice.state, "gas"));
+  PetscInt xs[3], xm[3], gxs[3], gxm[3];
+  PetscCall(DMDAGetCorners(ice.da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(DMDAGetGhostCorners(ice.da, &gxs[0], &gxs[1], &gxs[2], &gxm[0], &gxm[1], &gxm[2]));
+  for (int d = 0; d < 3; ++d) {
+    ice.xs[d]  = xs[d];
+    ice.xm[d]  = xm[d];
+    ice.gxs[d] = gxs[d];
+    ice.gxm[d] = gxm[d];
+  }
+  ice.lstride[0] = 1;
+  ice.lstride[1] = gxm[0];
+  ice.lstride[2] = gxm[0] * gxm[1];
+  const size_t nlocal = (size_t)gxm[0] * gxm[1] * gxm[2];
+  for (PetscInt d = 0; d < ice.dim; ++d) {
+    ice.face_vel[d].assign(nlocal * ice.nmat, 0);
+    ice.face_vel_star[d].assign(nlocal * ice.nmat, 0);
+    ice.face_spvol[d].assign(nlocal * ice.nmat, 0);
+    ice.face_spvol_eff[d].assign(nlocal * ice.nmat, 0);
+  }
+  if (ice.da_p) {
+    PetscCall(DMSetUp(ice.da_p));
+    PetscCall(DMCreateMatrix(ice.da_p, &ice.A));
+    PetscCall(DMCreateGlobalVector(ice.da_p, &ice.dp));
+    PetscCall(VecDuplicate(ice.dp, &ice.rhs));
+    PetscCall(KSPCreate(ice.comm, &ice.ksp));
+    PetscCall(KSPSetOptionsPrefix(ice.ksp, "ice_pressure_"));
+    PetscCall(KSPSetDM(ice.ksp, ice.da_p));
+    PetscCall(KSPSetDMActive(ice.ksp, PETSC_FALSE));
+    PetscCall(KSPSetType(ice.ksp, KSPCG));
+    PetscCall(KSPSetTolerances(ice.ksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
+    PC pc;
+    PetscCall(KSPGetPC(ice.ksp, &pc));
+    PetscCall(PCSetType(pc, PCGAMG));
+    PetscCall(KSPSetFromOptions(ice.ksp));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **out)
+{
+  PetscFunctionBeginUser;
+  *out = nullptr;
+  auto ice  = std::make_unique<IceSolver>();
+  ice->comm = comm;
+  ice->dim  = grid.dim;
+  for (int d = 0; d < 3; ++d) {
+    ice->cells[d]   = d < grid.dim ? grid.cells[d] : 1;
+    ice->lower[d]   = grid.lower[d];
+    ice->h[d]       = grid.h[d];
+    ice->gravity[d] = grid.gravity[d];
+  }
+  RiemannSetup rs;
+  PetscCall(ReadOptions(*ice, rs, help));
+  if (ice->nmat == 0 || help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CreateDMs(*ice, grid.nodes));
+  PetscClassId id;
+  PetscCall(PetscClassIdRegister("burst ICE", &id));
+  PetscCall(PetscLogEventRegister("ICE_Equilibrate", id, &ice->ev_equilibrate));
+  PetscCall(PetscLogEventRegister("ICE_FaceVelocity", id, &ice->ev_face));
+  PetscCall(PetscLogEventRegister("ICE_Pressure", id, &ice->ev_pressure));
+  PetscCall(PetscLogEventRegister("ICE_Sources", id, &ice->ev_sources));
+  PetscCall(PetscLogEventRegister("ICE_Exchange", id, &ice->ev_exchange));
+  PetscCall(PetscLogEventRegister("ICE_Advect", id, &ice->ev_advect));
+  PetscCall(PetscLogEventRegister("ICE_Ghosts", id, &ice->ev_bc));
+  PetscCall(PetscLogEventRegister("ICE_TimeStep", id, &ice->ev_dt));
+
+  // The initial state (ice.md 8: sub-cell sampling of each region, 4 points per direction).
+  const IceSolver &cice = *ice;
+  for (PetscInt m = 0; m < cice.nmat; ++m) {
+    const IceMaterial &mat = cice.materials[m];
+    const bool         in_riemann = rs.set && (m == rs.left_material || m == rs.right_material);
+    if (!in_riemann) {
+      PetscCheck(mat.density > 0, comm, PETSC_ERR_USER_INPUT, "Gas material %s needs -%s_density > 0 (kg/m^3)", mat.name.c_str(), mat.name.c_str());
+      PetscCheck(mat.temperature > 0, comm, PETSC_ERR_USER_INPUT, "Gas material %s needs -%s_temperature > 0 (K)", mat.name.c_str(), mat.name.c_str());
+    }
+  }
+  PetscScalar *a;
+  PetscCall(IceGetLocalArray(*ice, &a));
+  const PetscInt nsub = 4;
+  for (PetscInt k = ice->xs[2]; k < ice->xs[2] + ice->xm[2]; ++k)
+    for (PetscInt j = ice->xs[1]; j < ice->xs[1] + ice->xm[1]; ++j)
+      for (PetscInt i = ice->xs[0]; i < ice->xs[0] + ice->xm[0]; ++i) {
+        PetscScalar   *c = a + ice->LocalIndex(i, j, k) * ice->stride;
+        const PetscInt ijk[3] = {i, j, k};
+        // fraction of the cell on the left (inside) of the diaphragm
+        PetscReal left_fraction = 0;
+        if (rs.set) {
+          PetscInt inside = 0, total = 0;
+          for (PetscInt sk = 0; sk < (ice->dim == 3 ? nsub : 1); ++sk)
+            for (PetscInt sj = 0; sj < nsub; ++sj)
+              for (PetscInt si = 0; si < nsub; ++si) {
+                const PetscInt s[3] = {si, sj, sk};
+                PetscReal      x[3] = {0, 0, 0}, r2 = 0;
+                for (PetscInt d = 0; d < ice->dim; ++d) x[d] = ice->lower[d] + (ijk[d] + (s[d] + 0.5) / nsub) * ice->h[d];
+                bool left;
+                if (rs.shape == RiemannShape::Planar) left = x[0] < rs.position;
+                else {
+                  for (PetscInt d = 0; d < (rs.shape == RiemannShape::Sphere ? 3 : 2); ++d) r2 += (x[d] - rs.center[d]) * (x[d] - rs.center[d]);
+                  left = r2 < rs.position * rs.position;
+                }
+                inside += left;
+                ++total;
+              }
+          left_fraction = (PetscReal)inside / total;
+        }
+        PetscReal xc[3] = {0, 0, 0}, radial[3] = {1, 0, 0};
+        for (PetscInt d = 0; d < ice->dim; ++d) xc[d] = ice->lower[d] + (ijk[d] + 0.5) * ice->h[d];
+        if (rs.set && rs.shape != RiemannShape::Planar) {
+          PetscReal r = 0;
+          for (PetscInt d = 0; d < (rs.shape == RiemannShape::Sphere ? 3 : 2); ++d) r += (xc[d] - rs.center[d]) * (xc[d] - rs.center[d]);
+          r = std::sqrt(r);
+          for (PetscInt d = 0; d < 3; ++d) radial[d] = (r > 0 && d < (rs.shape == RiemannShape::Sphere ? 3 : 2)) ? (xc[d] - rs.center[d]) / r : 0;
+        }
+        PetscReal pressure = 0, dominant = -1, dominant_u[3] = {0, 0, 0};
+        for (PetscInt m = 0; m < ice->nmat; ++m) {
+          const IceMaterial &mat = ice->materials[m];
+          PetscReal          fraction, rho_micro, T, u[3] = {0, 0, 0}, p;
+          if (rs.set && (m == rs.left_material || m == rs.right_material)) {
+            // one material for both sides: the state of the side holding the cell centre;
+            // two materials: each its own side's state, in proportion to the sub-cell samples
+            const bool      same  = rs.left_material == rs.right_material;
+            const bool      left  = same ? left_fraction >= 0.5 : m == rs.left_material;
+            const PetscReal *st   = left ? rs.left : rs.right;
+            fraction              = same ? 1 : (left ? left_fraction : 1 - left_fraction);
+            rho_micro             = st[0];
+            p                     = st[2];
+            T                     = mat.eos->Temperature(rho_micro, p);
+            for (PetscInt d = 0; d < 3; ++d) u[d] = st[1] * radial[d];
+          } else {
+            fraction  = rs.set ? 0 : mat.volume_fraction;
+            rho_micro = mat.density;
+            T         = mat.temperature;
+            p         = mat.eos->Evaluate(rho_micro, T).pressure;
+            for (PetscInt d = 0; d < ice->dim; ++d) u[d] = mat.velocity[d];
+          }
+          PetscCheck(T > 0 && std::isfinite(T), comm, PETSC_ERR_USER_INPUT, "Gas material %s: initial temperature %g K from its equation of state is not positive; check its density, pressure and -%s_eos_type parameters", mat.name.c_str(), (double)T, mat.name.c_str());
+          c[ice->Offset(m, icef::rho)]   = PetscMax(fraction, ice->rho_tiny) * rho_micro;
+          c[ice->Offset(m, icef::temp)]  = T;
+          c[ice->Offset(m, icef::spvol)] = 1 / rho_micro;
+          c[ice->Offset(m, icef::theta)] = fraction;
+          for (PetscInt d = 0; d < 3; ++d) c[ice->Offset(m, icef::vel + d)] = u[d];
+          if (fraction > dominant) {
+            dominant = fraction;
+            pressure = p;
+            for (PetscInt d = 0; d < 3; ++d) dominant_u[d] = u[d];
+          }
+        }
+        // an absent material moves with the cell's dominant one
+        for (PetscInt m = 0; m < ice->nmat; ++m)
+          if (c[ice->Offset(m, icef::theta)] == 0)
+            for (PetscInt d = 0; d < 3; ++d) c[ice->Offset(m, icef::vel + d)] = dominant_u[d];
+        c[ice->CellOffset(icef::press)]    = pressure;
+        c[ice->CellOffset(icef::press_eq)] = pressure;
+      }
+  PetscCall(IceRestoreLocalArray(*ice, &a));
+  PetscCall(IceUpdateGhosts(*ice));
+  PetscCall(IceComputeTotals(*ice, ice->initial));
+  *out = ice.release();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  gas (ICE): %" PetscInt_FMT " material(s), pressure %s, advection order %" PetscInt_FMT "%s, cfl %g (sound-speed knob %g)\n", ice.nmat, IcePressureSolverNames[(int)ice.pressure_solver], ice.advection_order, ice.advection_order == 2 && ice.compatible_fluxes ? " with compatible fluxes" : "", (double)ice.cfl, (double)ice.sound_speed_knob));
+  const char *faces[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
+  PetscCall(PetscViewerASCIIPrintf(viewer, "    boundaries:"));
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) PetscCall(PetscViewerASCIIPrintf(viewer, " %s %s", faces[d][s], IceBCNames[(int)ice.bc[d][s].type]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  for (const IceMaterial &m : ice.materials) {
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    gas material %s: ", m.name.c_str()));
+    PetscCall(m.eos->View(viewer));
+  }
+  if (ice.nmat > 1)
+    for (PetscInt a = 0; a < ice.nmat; ++a)
+      for (PetscInt b = a + 1; b < ice.nmat; ++b)
+        PetscCall(PetscViewerASCIIPrintf(viewer, "    exchange %s-%s: K %g kg/(m^3 s), H %g W/(m^3 K)\n", ice.materials[a].name.c_str(), ice.materials[b].name.c_str(), (double)ice.exchange_K[a][b], (double)ice.exchange_H[a][b]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+IceSolver::~IceSolver()
+{
+  VecDestroy(&state);
+  VecDestroy(&local);
+  VecDestroy(&dp);
+  VecDestroy(&rhs);
+  MatDestroy(&A);
+  KSPDestroy(&ksp);
+  DMDestroy(&da_p);
+  DMDestroy(&da);
+}
+
+PetscErrorCode IceDestroy(IceSolver **ice)
+{
+  PetscFunctionBeginUser;
+  delete *ice;
+  *ice = nullptr;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

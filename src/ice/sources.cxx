@@ -1,0 +1,60 @@
+// Face pressure, momentum and energy sources, and the Lagrangian values (ice.md 1.6-1.8, steps
+// 9, 10, 12).
+//
+// Face pressure from continuity of acceleration: p_f = (p_R rho_L + p_L rho_R)/(rho_L + rho_R),
+// rho the sum of the bulk densities. Per material, per unit volume:
+//   momentum  -dt theta_m grad p_f + dt rho_m g
+//   energy    theta_m kappa_m (T dP/dT + dp_dil) dp_dil: the work of compression, c_v dT = -T
+//             (dP/dT)_rho dv, evaluated at the end-of-step pressure; for an ideal gas this is
+//             Uintah's p^{n+1} theta kappa dp_dil.
+// The Lagrangian values are the state plus these sources (no mass source without burning).
+#include "ice.hpp"
+#include <cmath>
+
+namespace burst {
+
+PetscErrorCode IceSources(IceSolver &ice)
+{
+  PetscScalar   *a;
+  const PetscInt S = ice.stride, n = ice.nmat, dim = ice.dim;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_sources, 0, 0, 0, 0));
+  PetscCall(IceGetLocalArray(ice, &a));
+  auto face_pressure = [&](PetscInt L, PetscInt R) {
+    const PetscScalar *cL = a + L * S, *cR = a + R * S;
+    PetscReal          rL = 0, rR = 0;
+    for (PetscInt m = 0; m < n; ++m) {
+      rL += cL[ice.Offset(m, icef::rho)];
+      rR += cR[ice.Offset(m, icef::rho)];
+    }
+    return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
+  };
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt idx = ice.LocalIndex(i, j, k);
+        PetscScalar   *c   = a + idx * S;
+        PetscReal      grad_p[3] = {0, 0, 0};
+        for (PetscInt d = 0; d < dim; ++d) grad_p[d] = (face_pressure(idx, idx + ice.lstride[d]) - face_pressure(idx - ice.lstride[d], idx)) / ice.h[d];
+        const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
+        for (PetscInt m = 0; m < n; ++m) {
+          const IceMaterial &mat   = ice.materials[m];
+          const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
+          const PetscReal    theta = c[ice.Offset(m, icef::theta)];
+          c[ice.Offset(m, icef::rho_L)] = rho;
+          for (PetscInt d = 0; d < 3; ++d) {
+            const PetscReal source = d < dim ? -ice.dt * theta * grad_p[d] + ice.dt * rho * ice.gravity[d] : 0;
+            c[ice.Offset(m, icef::vel_L + d)] = c[ice.Offset(m, icef::vel + d)] + source / rho;
+          }
+          const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
+          const PetscReal T_L  = c[ice.Offset(m, icef::temp)] + work / (rho * mat.eos->cv);
+          PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
+          c[ice.Offset(m, icef::temp_L)] = T_L;
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(PetscLogEventEnd(ice.ev_sources, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst
