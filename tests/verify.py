@@ -342,11 +342,17 @@ def parallel(args):
 
 
 def deck(args):
+    """A deck runs: particles (with their XDMF output) if it has any, gas mass if it has an ICE gas
+    (summary.json "gas"), and at least one of the two."""
     with tempfile.TemporaryDirectory() as out:
         s = run(args.burst, os.path.join(ROOT, args.deck), out, ["-max_steps", str(args.steps), *args.extra.split()], ranks=args.ranks)
-        ok = s["steps"] >= 1 and s["particles"] > 0 and os.path.exists(os.path.join(out, "particles.xmf"))
-    print(f"deck {args.deck} on {args.ranks} rank(s): {s['steps']} steps, {s['particles']} particles, "
-          f"energy balance error {s['energy_balance_error']:.2e} {'OK' if ok else 'FAIL'}")
+        particles = s.get("particles", 0)
+        particles_ok = particles == 0 or os.path.exists(os.path.join(out, "particles.xmf"))
+        gas_mass = s.get("gas", {}).get("mass", 0.0)
+        ok = s["steps"] >= 1 and (particles > 0 or gas_mass > 0) and particles_ok
+    energy = s.get("energy_balance_error")
+    print(f"deck {args.deck} on {args.ranks} rank(s): {s['steps']} steps, {particles} particles, gas mass {gas_mass:.6g}"
+          + (f", energy balance error {energy:.2e}" if energy is not None else "") + f" {'OK' if ok else 'FAIL'}")
     sys.exit(0 if ok else 1)
 
 
