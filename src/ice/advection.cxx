@@ -187,6 +187,16 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           PetscCheck(fraction <= 1, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": material %s leaves cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") with %g of its volume in one step (more than the cell); reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)fraction);
         }
       }
+  // Total energy: advect c_v T + |u|^2/2 (stored in temp_L over the whole local box) so the remap
+  // keeps the kinetic energy it averages away as heat (ice.md 1.7 notes the reference does not).
+  if (ice.advect_total_energy)
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt m = 0; m < n; ++m) {
+        PetscScalar *c  = a + idx * S;
+        PetscReal    u2 = 0;
+        for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+        c[ice.Offset(m, icef::temp_L)] += 0.5 * u2 / ice.materials[m].eos->cv;
+      }
   const PetscInt nq = dim + 2;
   std::vector<PetscReal> storage((size_t)nlocal * (nq + 1));
   PetscReal             *outs[8];
@@ -208,7 +218,12 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           if (!(rho > 0)) bad = "density";
           PetscReal u[3] = {0, 0, 0};
           for (PetscInt d = 0; d < dim; ++d) u[d] = (rho_L * c[ice.Offset(m, icef::vel_L + d)] + outs[1 + d][idx]) / rho;
-          const PetscReal T = (rho_L * c[ice.Offset(m, icef::temp_L)] + outs[1 + dim][idx]) / rho;
+          PetscReal T = (rho_L * c[ice.Offset(m, icef::temp_L)] + outs[1 + dim][idx]) / rho;
+          if (ice.advect_total_energy) {
+            PetscReal u2 = 0;
+            for (PetscInt d = 0; d < dim; ++d) u2 += u[d] * u[d];
+            T -= 0.5 * u2 / ice.materials[m].eos->cv;
+          }
           const PetscReal v = (rho_L * c[ice.Offset(m, icef::spvol_L)] + outs[2 + dim][idx]) / rho;
           if (!bad && !(T > 0)) bad = "temperature";
           if (!bad && !(v > 0)) bad = "specific volume";

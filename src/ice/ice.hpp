@@ -93,6 +93,8 @@ struct IceSolver {
   IcePressureSolver pressure_solver = IcePressureSolver::Explicit;
   PetscInt  advection_order = 2;
   PetscBool compatible_fluxes = PETSC_TRUE;
+  PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
+  PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
   PetscReal cfl = 0.25;
   PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit
   PetscReal dt_fixed = 0;            // -ice_dt

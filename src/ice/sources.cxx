@@ -46,8 +46,27 @@ PetscErrorCode IceSources(IceSolver &ice)
             const PetscReal source = d < dim ? -ice.dt * theta * grad_p[d] + ice.dt * rho * ice.gravity[d] : 0;
             c[ice.Offset(m, icef::vel_L + d)] = c[ice.Offset(m, icef::vel + d)] + source / rho;
           }
-          const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-          const PetscReal T_L  = c[ice.Offset(m, icef::temp)] + work / (rho * mat.eos->cv);
+          PetscReal T_L;
+          if (ice.conservative_energy) {
+            // total energy from the work of the face pressures on the face volume fluxes, minus
+            // the kinetic energy the momentum source gave: conservative, so shocks move at the
+            // Rankine-Hugoniot speed
+            PetscReal work = 0, ke = 0;
+            for (PetscInt d = 0; d < dim; ++d) {
+              const PetscInt faces[2] = {idx, idx + ice.lstride[d]};
+              for (int s = 0; s < 2; ++s) {
+                const PetscInt  R = faces[s], L = R - ice.lstride[d];
+                const PetscReal u = ice.face_vel[d][R * n + m];
+                const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
+                work -= (s ? 1 : -1) * ice.dt / ice.h[d] * face_pressure(L, R) * theta_f * u;
+              }
+              ke += 0.5 * (c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)] - c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)]);
+            }
+            T_L = c[ice.Offset(m, icef::temp)] + (work / rho - ke) / mat.eos->cv;
+          } else {
+            const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
+            T_L                  = c[ice.Offset(m, icef::temp)] + work / (rho * mat.eos->cv);
+          }
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;
         }

@@ -109,6 +109,10 @@ PetscErrorCode ReadGeometries(Simulation &sim)
   PetscCall(PetscOptionsStringArray("-geometries", "Names of the geometry objects that seed particles; each is configured with -<name>_type etc.", "", names, &n, &set));
   PetscOptionsEnd();
   if (sim.help && (!(set && n > 0) || sim.materials.empty())) PetscFunctionReturn(PETSC_SUCCESS);
+  if (sim.materials.empty()) { // no solids: a gas-only scene seeds nothing
+    PetscCheck(!(set && n > 0), sim.comm, PETSC_ERR_USER_INPUT, "Option -geometries seeds particles, but -materials lists no solid material for them");
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No particles: give -geometries name1,name2,... and configure each with -<name>_type (box, disk, cylinder, annulus, sphere)");
   for (PetscInt gi = 0; gi < n; ++gi) {
     auto  g     = std::make_unique<Geometry>();
