@@ -55,6 +55,46 @@ void LimitedGradient(const IceSolver &ice, Value value, PetscReal *grad)
       }
 }
 
+// Compatible-flux limiter (VanderHeyden & Kashiwa 1998): the slab carries rho_v q_c + rho_c grad q
+// . r, so the mass-specific value it delivers is q_c + (rho_c/rho_v) grad q . r. The gradient of q is
+// limited so that this value stays within the face neighbours' bounds at every vertex, rho_v being
+// the (already limited) density reconstruction there; without the density ratio a steep density
+// drop (a trace material beside its own interface) lets q overshoot by the ratio and turn negative.
+template <class Value>
+void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, const PetscScalar *a, const PetscReal *grad_rho, PetscReal *grad)
+{
+  PetscInt lo[3], hi[3];
+  DonorBox(ice, lo, hi);
+  const PetscInt nvert = ice.dim == 3 ? 8 : 4;
+  for (PetscInt k = lo[2]; k < hi[2]; ++k)
+    for (PetscInt j = lo[1]; j < hi[1]; ++j)
+      for (PetscInt i = lo[0]; i < hi[0]; ++i) {
+        const PetscInt  idx = ice.LocalIndex(i, j, k);
+        const PetscReal q = value(idx), rho = a[idx * ice.stride + density];
+        PetscReal       qmax = q, qmin = q, g[3] = {0, 0, 0};
+        for (PetscInt d = 0; d < ice.dim; ++d) {
+          const PetscReal qm = value(idx - ice.lstride[d]), qp = value(idx + ice.lstride[d]);
+          g[d]               = (qp - qm) / (2 * ice.h[d]);
+          qmax               = PetscMax(qmax, PetscMax(qm, qp));
+          qmin               = PetscMin(qmin, PetscMin(qm, qp));
+        }
+        PetscReal alpha = 1;
+        for (PetscInt v = 0; v < nvert; ++v) {
+          PetscReal dq = 0, drho = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscReal r = ((v >> d) & 1 ? 0.5 : -0.5) * ice.h[d];
+            dq += g[d] * r;
+            drho += grad_rho[3 * idx + d] * r;
+          }
+          const PetscReal dv = dq * rho / (rho + drho);
+          if (dv > 0) alpha = PetscMin(alpha, (qmax - q) / dv);
+          else if (dv < 0) alpha = PetscMin(alpha, (qmin - q) / dv);
+        }
+        alpha = PetscMax(alpha, 0.0);
+        for (PetscInt d = 0; d < 3; ++d) grad[3 * idx + d] = alpha * g[d];
+      }
+}
+
 } // namespace
 
 void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[])
@@ -71,7 +111,7 @@ void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, Pet
     LimitedGradient(ice, [&](PetscInt idx) { return a[idx * S + density]; }, grad_rho);
     for (PetscInt q = 0; q < nq; ++q) {
       const PetscInt f = q_fields[q];
-      if (ice.compatible_fluxes) LimitedGradient(ice, [&](PetscInt idx) { return a[idx * S + f]; }, grad_q(q));
+      if (ice.compatible_fluxes) CompatibleGradient(ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
       else LimitedGradient(ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
     }
   }
@@ -187,25 +227,28 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           PetscCheck(fraction <= 1, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": material %s leaves cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") with %g of its volume in one step (more than the cell); reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)fraction);
         }
       }
-  // Total energy: advect c_v T + |u|^2/2 (stored in temp_L over the whole local box) so the remap
-  // keeps the kinetic energy it averages away as heat (ice.md 1.7 notes the reference does not).
+  // Total energy: advect c_v T + |u|^2/2 too, so the kinetic energy that the remap averages away
+  // becomes heat (the reference advects c_v T only, ice.md 1.7). Materials present in a cell
+  // take their temperature from it; a trace material (theta < 1e-6, mass ~ rho_tiny) keeps the
+  // internal-energy value, whose sign is safe.
   if (ice.advect_total_energy)
     for (PetscInt idx = 0; idx < nlocal; ++idx)
       for (PetscInt m = 0; m < n; ++m) {
         PetscScalar *c  = a + idx * S;
         PetscReal    u2 = 0;
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
-        c[ice.Offset(m, icef::temp_L)] += 0.5 * u2 / ice.materials[m].eos->cv;
+        c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + 0.5 * u2 / ice.materials[m].eos->cv;
       }
-  const PetscInt nq = dim + 2;
+  const PetscInt nq = dim + 2 + (ice.advect_total_energy ? 1 : 0);
   std::vector<PetscReal> storage((size_t)nlocal * (nq + 1));
   PetscReal             *outs[8];
   for (PetscInt q = 0; q <= nq; ++q) outs[q] = storage.data() + (size_t)q * nlocal;
   for (PetscInt m = 0; m < n; ++m) {
-    PetscInt q_fields[5];
+    PetscInt q_fields[6];
     for (PetscInt d = 0; d < dim; ++d) q_fields[d] = ice.Offset(m, icef::vel_L + d);
     q_fields[dim]     = ice.Offset(m, icef::temp_L);
     q_fields[dim + 1] = ice.Offset(m, icef::spvol_L);
+    q_fields[dim + 2] = ice.Offset(m, icef::energy_L);
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
       for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
@@ -218,13 +261,14 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           if (!(rho > 0)) bad = "density";
           PetscReal u[3] = {0, 0, 0};
           for (PetscInt d = 0; d < dim; ++d) u[d] = (rho_L * c[ice.Offset(m, icef::vel_L + d)] + outs[1 + d][idx]) / rho;
-          PetscReal T = (rho_L * c[ice.Offset(m, icef::temp_L)] + outs[1 + dim][idx]) / rho;
-          if (ice.advect_total_energy) {
+          PetscReal       T = (rho_L * c[ice.Offset(m, icef::temp_L)] + outs[1 + dim][idx]) / rho;
+          const PetscReal v = (rho_L * c[ice.Offset(m, icef::spvol_L)] + outs[2 + dim][idx]) / rho;
+          if (ice.advect_total_energy && c[ice.Offset(m, icef::theta)] >= 1e-6) {
             PetscReal u2 = 0;
             for (PetscInt d = 0; d < dim; ++d) u2 += u[d] * u[d];
-            T -= 0.5 * u2 / ice.materials[m].eos->cv;
+            const PetscReal T_total = (rho_L * c[ice.Offset(m, icef::energy_L)] + outs[3 + dim][idx]) / rho - 0.5 * u2 / ice.materials[m].eos->cv;
+            if (T_total > 0) T = T_total;
           }
-          const PetscReal v = (rho_L * c[ice.Offset(m, icef::spvol_L)] + outs[2 + dim][idx]) / rho;
           if (!bad && !(T > 0)) bad = "temperature";
           if (!bad && !(v > 0)) bad = "specific volume";
           for (PetscInt d = 0; d < dim && !bad; ++d)

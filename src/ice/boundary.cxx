@@ -36,7 +36,8 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
       const IceFaceBC &bc = ice.bc[d][s];
       for (PetscInt layer = 1; layer <= 2; ++layer) {
         const PetscInt ghost  = s == 0 ? -layer : ice.cells[d] - 1 + layer;
-        const PetscInt mirror = s == 0 ? layer - 1 : ice.cells[d] - layer;
+        // (a domain one cell wide mirrors its only cell into both layers)
+        const PetscInt mirror = s == 0 ? PetscMin(layer - 1, ice.cells[d] - 1) : PetscMax(ice.cells[d] - layer, 0);
         const PetscInt edge   = s == 0 ? 0 : ice.cells[d] - 1;
         const PetscInt source = (bc.type == IceBC::Wall || bc.type == IceBC::Symmetry) ? mirror : edge;
         // loop over the ghosted box in the other directions

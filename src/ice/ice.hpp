@@ -59,7 +59,8 @@ inline constexpr int rho_L = 11;    // Lagrangian bulk density, kg/m^3
 inline constexpr int vel_L = 12;    // Lagrangian (after sources and exchange) velocity, 3 components
 inline constexpr int temp_L = 15;   // Lagrangian temperature, K
 inline constexpr int spvol_L = 16;  // Lagrangian specific volume, m^3/kg
-inline constexpr int kMatFields = 17;
+inline constexpr int energy_L = 17; // Lagrangian total energy over c_v, T + |u|^2/(2 c_v), K
+inline constexpr int kMatFields = 18;
 // cell fields after the material blocks
 inline constexpr int press = 0;     // pressure at the end of the step (p^{n+1}), Pa
 inline constexpr int press_eq = 1;  // equilibration pressure of this step, Pa
