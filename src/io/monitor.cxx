@@ -155,7 +155,8 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations");
     std::fprintf(csv, "\n");
   }
-  PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
+  if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
+  else PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %14s %12s %12s %14s %12s %12s %6s\n", "step", "time", "dt", "gas mass", "kinetic", "internal", "total energy", "momentum_x", "momentum_y", "KSP"));
   PetscCall(PetscTime(&last_progress));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -185,7 +186,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
   IceTotals gas;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
-  PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
+  if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
+  else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && csv) {
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
     std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
@@ -276,6 +278,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)r.balance_error, (double)(rate / sim.size), path.c_str()));
+  if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
