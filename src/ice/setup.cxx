@@ -126,14 +126,14 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs, PetscBool he
     }
 
   // Exchange coefficients (ice.md 1.8): the upper triangle in material order
-  if (ice.nmat > 1 || help) {
+  {
     for (PetscInt a = 0; a < kIceMaxMaterials; ++a)
       for (PetscInt b = 0; b < kIceMaxMaterials; ++b) {
         ice.exchange_K[a][b] = a == b ? 0 : 1e15;
         ice.exchange_H[a][b] = a == b ? 0 : 1e10;
       }
-    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_momentum", "Momentum exchange coefficients K_ij (kg/(m^3 s)), upper triangle in -ice_materials order, or one value for all pairs; <= 1e20", 1e20, ice.exchange_K));
-    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_heat", "Heat exchange coefficients H_ij (W/(m^3 K)), upper triangle, or one value for all pairs; <= 1e15", 1e15, ice.exchange_H));
+    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_momentum", "Momentum exchange coefficients K_ij (kg/(m^3 s)), upper triangle in -ice_materials order, or one value for all pairs; <= 1e20 (default 1e15, ice.md 1.8)", 1e20, ice.exchange_K));
+    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_heat", "Heat exchange coefficients H_ij (W/(m^3 K)), upper triangle, or one value for all pairs; <= 1e15 (default 1e10)", 1e15, ice.exchange_H));
   }
 
   // Initial state: a Riemann problem, or every material uniform
