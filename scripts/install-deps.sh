@@ -11,6 +11,7 @@ packages=(
   libsundials-dev
   libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py
+  python3-paraview # pvpython for tests/check_paraview.py
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,10 +1,15 @@
 // Particle and grid output as HDF5 + XDMF that ParaView opens as is (petsc.md 4.5-4.6, 8).
 //
 // Each output step writes particles_NNNNNN.h5 (datasets /particles/<field>, [N][bs]) and, with
-// -output_grid, grid_NNNNNN.h5 (DMDA vectors in natural ordering, [Nz][Ny][Nx][dof]). The files are
-// written under a temporary name and renamed when complete; particles.xmf and grid.xmf list every
-// step written so far as a temporal collection and are replaced atomically too.
+// -output_grid, grid_NNNNNN.h5: one dataset per node field, /nodes/<field> in natural ordering,
+// scalars [Nz][Ny][Nx] and vectors [Nz][Ny][Nx][3] (padded to 3 in 2-D): mass, velocity, force, and
+// mass_1, velocity_1, force_1 for the converted field (grid_output.hpp, also for cell-centred data).
+// The XDMF points at each dataset directly (no HyperSlab: ParaView's XDMF readers print HDF5 error
+// traces or drop the arrays for those). The files are written under a temporary name and renamed
+// when complete; particles.xmf and grid.xmf list every step written so far as a temporal collection
+// and are replaced atomically too.
 #include "../simulation.hpp"
+#include "grid_output.hpp"
 #include <petscviewerhdf5.h>
 #include <cstdio>
 #include <fstream>
@@ -141,42 +146,35 @@ static std::string XdmfParticleGrid(const Simulation &sim, const std::string &fi
   return s.str();
 }
 
-static std::string XdmfGridGrid(const Simulation &sim, const std::string &file, PetscReal time)
+// Node grid fields per velocity field f (nodal layout [mass, momentum(dim), force(dim)(, mass
+// gradient(dim))] stacked per field; velocity layout [v_old(dim), v_new(dim)] per field): mass, the
+// updated velocity and the force; the converted field's (f = 1, -mpm_convert_failed) with a suffix.
+static std::vector<GridField> NodalFields(const Grid &g)
 {
-  const Grid        &g = sim.grid;
-  const PetscInt     dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
-  std::ostringstream dims, origin, spacing, s;
-  for (PetscInt d = dim - 1; d >= 0; --d) {
-    dims << g.cells[d] + 1 << (d ? " " : "");
-    origin << g.lower[d] << (d ? " " : "");
-    spacing << g.h[d] << (d ? " " : "");
+  std::vector<GridField> out;
+  for (PetscInt f = 0; f < g.num_velocity_fields; ++f) {
+    const std::string suffix = f ? "_" + std::to_string(f) : "";
+    out.push_back({"mass" + suffix, f * g.NodeStride(), 1});
+    out.push_back({"force" + suffix, f * g.NodeStride() + 1 + g.dim, g.dim});
   }
-  s << "    <Grid Name=\"grid\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
-  s << "      <Topology TopologyType=\"" << (dim == 2 ? "2DCoRectMesh" : "3DCoRectMesh") << "\" Dimensions=\"" << dims.str() << "\"/>\n";
-  s << "      <Geometry GeometryType=\"" << (dim == 2 ? "ORIGIN_DXDY" : "ORIGIN_DXDYDZ") << "\">\n";
-  s << "        <DataItem Dimensions=\"" << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << origin.str() << "</DataItem>\n";
-  s << "        <DataItem Dimensions=\"" << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"XML\">" << spacing.str() << "</DataItem>\n      </Geometry>\n";
-  auto component = [&](const char *name, const char *dataset, PetscInt ndof, PetscInt c) {
-    std::ostringstream start, stride, count;
-    for (PetscInt d = 0; d < dim; ++d) {
-      start << "0 ";
-      stride << "1 ";
-    }
-    start << c;
-    stride << 1;
-    count << dims.str() << " 1";
-    s << "      <Attribute Name=\"" << name << "\" AttributeType=\"Scalar\" Center=\"Node\">\n";
-    s << "        <DataItem ItemType=\"HyperSlab\" Dimensions=\"" << count.str() << "\" Type=\"HyperSlab\">\n";
-    s << "          <DataItem Dimensions=\"3 " << dim + 1 << "\" Format=\"XML\">" << start.str() << " " << stride.str() << " " << count.str() << "</DataItem>\n";
-    s << "          <DataItem Dimensions=\"" << dims.str() << " " << ndof << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/" << dataset << "</DataItem>\n";
-    s << "        </DataItem>\n      </Attribute>\n";
-  };
-  const char *axis[3] = {"x", "y", "z"};
-  component("mass", "nodal", dof, 0);
-  for (PetscInt d = 0; d < dim; ++d) component((std::string("velocity_") + axis[d]).c_str(), "grid_velocity", vdof, dim + d);
-  for (PetscInt d = 0; d < dim; ++d) component((std::string("force_") + axis[d]).c_str(), "nodal", dof, 1 + dim + d);
-  s << "    </Grid>\n";
-  return s.str();
+  return out;
+}
+
+static std::vector<GridField> VelocityFields(const Grid &g)
+{
+  std::vector<GridField> out;
+  for (PetscInt f = 0; f < g.num_velocity_fields; ++f) out.push_back({"velocity" + (f ? "_" + std::to_string(f) : std::string()), f * 2 * g.dim + g.dim, g.dim});
+  return out;
+}
+
+static const char grid_group[] = "/nodes";
+
+static std::string XdmfNodeGrid(const Simulation &sim, const std::string &file, PetscReal time)
+{
+  const Grid            &g      = sim.grid;
+  std::vector<GridField> fields = NodalFields(g), velocity = VelocityFields(g);
+  fields.insert(fields.begin() + 1, velocity.begin(), velocity.end());
+  return XdmfGridBlock(file, grid_group, g.dim, g.cells, g.lower, g.h, false, fields, time);
 }
 
 static PetscErrorCode WriteCollection(Simulation &sim, const char name[], bool grid)
@@ -190,7 +188,7 @@ static PetscErrorCode WriteCollection(Simulation &sim, const char name[], bool g
     for (const auto &r : records) {
       char file[64];
       std::snprintf(file, sizeof(file), "%s_%06d.h5", grid ? "grid" : "particles", (int)r.step);
-      out << (grid ? XdmfGridGrid(sim, file, r.time) : XdmfParticleGrid(sim, file, r.particles, r.time));
+      out << (grid ? XdmfNodeGrid(sim, file, r.time) : XdmfParticleGrid(sim, file, r.particles, r.time));
     }
     out << "  </Grid>\n </Domain>\n</Xdmf>\n";
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
@@ -223,8 +221,8 @@ PetscErrorCode WriteOutput(Simulation &sim)
     path = sim.output_dir + "/" + name;
     tmp  = path + ".tmp";
     PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
-    PetscCall(VecView(sim.grid.nodal, viewer));
-    PetscCall(VecView(sim.grid.velocity, viewer));
+    PetscCall(WriteGridFields(viewer, sim.grid.da_nodes, sim.grid.nodal, grid_group, NodalFields(sim.grid)));
+    PetscCall(WriteGridFields(viewer, sim.grid.da_velocity, sim.grid.velocity, grid_group, VelocityFields(sim.grid)));
     PetscCall(PetscViewerDestroy(&viewer));
     PetscCall(AtomicRename(sim.comm, tmp, path));
   }
