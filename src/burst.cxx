@@ -94,12 +94,13 @@ static PetscErrorCode View(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Particles (HDF5/XDMF) and, for a gas run along x (one cell in the other directions), the gas
+// Particles and gas cells (HDF5/XDMF) and, for a gas run along x (one cell in the other directions), the gas
 // profile: profile_<step>.csv at every output and profile.csv at the end.
 static PetscErrorCode WriteAllOutput(Simulation &sim, bool last)
 {
   PetscFunctionBeginUser;
   if (sim.HasParticles()) PetscCall(WriteOutput(sim));
+  if (sim.ice) PetscCall(WriteGasOutput(sim));
   if (sim.ice && sim.grid.cells[1] == 1 && (sim.grid.dim == 2 || sim.grid.cells[2] == 1)) {
     char name[64];
     PetscCall(PetscSNPrintf(name, sizeof(name), "/profile_%06" PetscInt_FMT ".csv", sim.step));

@@ -210,6 +210,7 @@ PetscErrorCode RunPointDriver(Simulation &sim);
 // Output and diagnostics (src/io/)
 PetscErrorCode OutputSetUp(Simulation &sim);
 PetscErrorCode WriteOutput(Simulation &sim);
+PetscErrorCode WriteGasOutput(Simulation &sim); // gas cells (gas_NNNNNN.h5, gas.xmf)
 PetscErrorCode MonitorSetUp(Simulation &sim);
 PetscErrorCode Monitor(Simulation &sim, PetscBool force);
 PetscErrorCode WriteSummary(Simulation &sim);

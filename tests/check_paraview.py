@@ -2,7 +2,7 @@
 """ParaView opens burst's output without complaint.
 
 Runs a short 2-D scene (colliding disks) and a short 3-D scene (spheres), then opens particles.xmf
-and grid.xmf with ParaView's XDMF readers (XDMFReader, i.e. Xdmf2, and Xdmf3ReaderS) in a pvpython
+and grid.xmf (and gas.xmf of a 2-D and a 3-D gas blast) with ParaView's XDMF readers (XDMFReader, i.e. Xdmf2, and Xdmf3ReaderS) in a pvpython
 subprocess, updates every time step and checks:
   - nothing on stdout/stderr of pvpython matches HDF5|Error|ERROR|error (HDF5 error traces, VTK errors);
   - the number of time steps, particles (points and polyvertex cells) and grid points/cells;
@@ -33,6 +33,12 @@ SCENES = [
      ["-max_steps", "3", "-grid_upper", "1,1.25", "-grid_cells", "20,25", "-lower_center", "0.25,0.35"]),
     ("spheres3d", "options/scenes/spheres3d.opts",
      ["-max_steps", "2", "-grid_upper", "1,1.25,1.5", "-grid_cells", "16,20,24", "-a_center", "0.3,0.35,0.4"]),
+    # gas cells (gas.xmf): the blast off-centre on a non-square grid, 2-D and 3-D
+    ("gas2d", "options/scenes/blast2d.opts",
+     ["-max_steps", "2", "-output_interval", "1", "-grid_upper", "1,1.25", "-grid_cells", "20,25", "-ice_riemann_center", "0.2,0.5,0"]),
+    ("gas3d", "options/scenes/blast2d.opts",
+     ["-dim", "3", "-max_steps", "2", "-output_interval", "1", "-grid_lower", "0,0,0", "-grid_upper", "1,1.25,1.5", "-grid_cells", "8,10,12",
+      "-ice_riemann_shape", "sphere", "-ice_riemann_center", "0.2,0.5,0.7", "-ice_bc_zmin", "symmetry", "-ice_bc_zmax", "outflow"]),
 ]
 
 # Runs inside pvpython: prints one JSON line with what ParaView read.
@@ -152,6 +158,16 @@ def particle_reference(out):
     return ref
 
 
+def gas_reference(out):
+    """Per gas output file (in step order): the sum of each scalar cell dataset."""
+    ref = []
+    files = sorted(f for f in os.listdir(out) if f.startswith("gas_") and f.endswith(".h5"))
+    for f in files:
+        with h5py.File(os.path.join(out, f), "r") as h:
+            ref.append({k: float(np.asarray(h["cells"][k]).sum()) for k in h["cells"]})
+    return ref
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--burst", required=True)
@@ -184,8 +200,9 @@ def main():
         lower = grid_option(deck, extra, "-grid_lower", dim)
         upper = grid_option(deck, extra, "-grid_upper", dim)
         cells = [int(c) for c in grid_option(deck, extra, "-grid_cells", dim)]
-        ref = particle_reference(out)
-        files = [os.path.join(out, "particles.xmf"), os.path.join(out, "grid.xmf")]
+        gas = name.startswith("gas")
+        ref = gas_reference(out) if gas else particle_reference(out)
+        files = [os.path.join(out, "gas.xmf")] if gas else [os.path.join(out, "particles.xmf"), os.path.join(out, "grid.xmf")]
         p = subprocess.run(pv + ["-c", PV_SCRIPT] + files, capture_output=True, text=True, timeout=600)
         lines = [l for l in (p.stdout + p.stderr).splitlines() if not l.startswith("PVRESULT ")]
         noise = [l for l in lines if NOISE.search(l)]
@@ -210,7 +227,17 @@ def main():
                 for k, info in a.items():
                     expect = s["points"] if info["where"] == "point" else s["cells"]
                     check(info["tuples"] == expect, f"{st}: array {k} has {info['tuples']} tuples, expected {expect}")
-                if path.endswith("particles.xmf"):
+                if path.endswith("gas.xmf"):
+                    check(s["cells"] == ncells, f"{st}: {s['cells']} cells, expected {ncells}")
+                    for field, comps in (("pressure", 1), ("gas_density", 1), ("gas_velocity", 3), ("gas_temperature", 1), ("gas_volume_fraction", 1)):
+                        ok = check(field in a and a[field]["components"] == comps and a[field]["where"] == "cell",
+                                   f"{st}: gas cell array {field} ({comps} components) missing: { {k: v['components'] for k, v in a.items()} }")
+                        if ok and comps == 1:
+                            check(abs(a[field]["sum"] - r[field]) <= 1e-12 * abs(r[field]), f"{st}: {field} sum {a[field]['sum']!r} != HDF5 {r[field]!r}")
+                    if s["bounds"]:
+                        b = s["bounds"]
+                        check(all(abs(b[2 * d] - lower[d]) < 1e-12 and abs(b[2 * d + 1] - upper[d]) < 1e-12 for d in range(dim)), f"{st}: gas bounds {b}")
+                elif path.endswith("particles.xmf"):
                     # Xdmf3 makes no cells of a Polyvertex topology without a connectivity DataItem
                     # (points and arrays load; shown with the Points representation).
                     cells_ok = s["cells"] == r["n"] or (kind == "xdmf3" and s["cells"] == 0)
@@ -248,7 +275,7 @@ def main():
         for f in failures[:40]:
             print("  " + f)
         return 1
-    print("PASSED: ParaView reads particles.xmf and grid.xmf (XDMF2 and XDMF3 readers) cleanly")
+    print("PASSED: ParaView reads particles.xmf, grid.xmf and gas.xmf (XDMF2 and XDMF3 readers) cleanly")
     return 0
 
 
