@@ -9,7 +9,10 @@ Writes into OUTPUT_DIR
                  3-D output is drawn as an x-y projection of all particles seen from +z (particles
                  with larger z are drawn on top).
   energy.png     kinetic, internal and total minus external work against time from monitor.csv,
-                 with the relative energy balance error in a small panel below.
+                 with the relative energy balance error in a small panel below (a gas-only run:
+                 the gas's kinetic, internal and total energy and its mass change).
+  gas.png        a run with gas: pressure and mixture density of the last gas_NNNNNN.h5 (2-D: maps,
+                 3-D: the mid-z slice, a tube one cell wide: profiles along x).
 
 Fields (--field): vonmises (sqrt(3/2 s:s) of the Cauchy stress), pressure (-tr(sigma)/3), speed,
 displacement (magnitude), temperature, material; any other dataset in /particles is accepted too
@@ -288,6 +291,85 @@ def plot_energy(outdir, summary):
     return out, None
 
 
+def last_gas_file(outdir):
+    files = []
+    for path in glob.glob(os.path.join(glob.escape(outdir), "gas_*.h5")):
+        m = re.fullmatch(r"gas_(\d+)\.h5", os.path.basename(path))
+        if m:
+            files.append((int(m.group(1)), path))
+    return max(files)[1] if files else None
+
+
+def plot_gas(outdir, summary):
+    """Pressure and mixture density (sum of the bulk densities) of the last gas output."""
+    path = last_gas_file(outdir)
+    if path is None:
+        return None
+    with h5py.File(path, "r") as h:
+        cells = h["cells"]
+        time = scalar_attr(cells, "time", 0.0)
+        p = np.asarray(cells["pressure"])
+        rho = sum(np.asarray(cells[k]) for k in cells if k.endswith("_density"))
+    if p.shape[0] > 1:  # 3-D: the mid-z slice
+        p, rho = p[p.shape[0] // 2], rho[rho.shape[0] // 2]
+    else:
+        p, rho = p[0], rho[0]
+    lower = summary.get("grid_lower", [0, 0, 0])
+    upper = summary.get("grid_upper", [p.shape[1], p.shape[0], 1])
+    scene = summary.get("scene") or os.path.basename(os.path.normpath(outdir))
+    if p.shape[0] == 1:  # a tube along x
+        x = lower[0] + (np.arange(p.shape[1]) + 0.5) * (upper[0] - lower[0]) / p.shape[1]
+        fig, axes = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6), dpi=DPI)
+        axes[0].plot(x, p[0], color="tab:red")
+        axes[0].set_ylabel("pressure [Pa]")
+        axes[1].plot(x, rho[0], color="tab:blue")
+        axes[1].set_ylabel("density [kg/m³]")
+        axes[1].set_xlabel("x [m]")
+        for a in axes:
+            a.grid(True, alpha=0.3)
+    else:
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4.8), dpi=DPI, gridspec_kw={"wspace": 0.45})
+        extent = [lower[0], upper[0], lower[1], upper[1]]
+        for a, data, label, cmap in ((axes[0], p, "pressure [Pa]", "inferno"), (axes[1], rho, "density [kg/m³]", "viridis")):
+            im = a.imshow(data, origin="lower", extent=extent, cmap=cmap, interpolation="nearest")
+            a.set_xlabel("x [m]")
+            a.set_ylabel("y [m]")
+            a.set_aspect("equal")
+            cax = make_axes_locatable(a).append_axes("right", size="4%", pad=0.05)
+            fig.colorbar(im, cax=cax, label=label)
+    fig.suptitle("%s: gas at t = %.4g s" % (scene, time), fontsize=11)
+    out = os.path.join(outdir, "gas.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
+def plot_gas_energy(outdir, summary):
+    """A gas-only run: gas kinetic, internal and total energy, and the relative mass change."""
+    path = os.path.join(outdir, "monitor.csv")
+    table = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+    t = table["time"]
+    fig, (ax, axe) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), dpi=DPI, gridspec_kw={"height_ratios": [3, 1], "hspace": 0.08})
+    ax.plot(t, table["gas_kinetic_energy"], label="kinetic", color="tab:blue")
+    ax.plot(t, table["gas_internal_energy"], label="internal", color="tab:orange")
+    ax.plot(t, table["gas_total_energy"], label="total", color="black")
+    ax.set_ylabel("energy [J] (per metre in 2-D)")
+    ax.legend(fontsize=9)
+    ax.grid(True, alpha=0.3)
+    ax.set_title("%s: gas energy" % (summary.get("scene") or ""), fontsize=11)
+    e0 = table["gas_total_energy"][0]
+    axe.plot(t, (table["gas_total_energy"] - e0) / e0, color="tab:red", label="total energy")
+    axe.plot(t, (table["gas_mass"] - table["gas_mass"][0]) / table["gas_mass"][0], color="tab:green", label="mass")
+    axe.set_ylabel("relative\nchange", fontsize=9)
+    axe.set_xlabel("time [s]")
+    axe.legend(fontsize=8)
+    axe.grid(True, alpha=0.3)
+    out = os.path.join(outdir, "energy.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
 def plot_fragment_masses(outdir, summary):
     """Mass distribution of the fragments (fragments.csv): mass of each fragment, largest first."""
     path = os.path.join(outdir, "fragments.csv")
@@ -328,6 +410,15 @@ def main(argv=None):
         fail("%s is not a folder" % outdir)
     summary = load_summary(outdir)
 
+    has_particles = bool(glob.glob(os.path.join(glob.escape(outdir), "particles_*.h5")))
+    gas_png = plot_gas(outdir, summary)
+    if gas_png:
+        print("wrote %s" % gas_png)
+    if not has_particles:
+        if gas_png is None:
+            fail("no particles_*.h5 or gas_*.h5 files in %s" % outdir)
+        print("wrote %s" % plot_gas_energy(outdir, summary))
+        return 0
     png, source, nfiles = plot_particles(outdir, args.field, summary)
     print("wrote %s (%s, last of %d particle file%s)" % (png, os.path.basename(source), nfiles, "" if nfiles == 1 else "s"))
     if os.path.exists(os.path.join(outdir, "fragments.csv")):

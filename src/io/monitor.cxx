@@ -228,6 +228,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"dim\": " << sim.grid.dim << ",\n";
   s << "  \"ranks\": " << sim.size << ",\n";
   s << "  \"cells\": [" << sim.grid.cells[0] << ", " << sim.grid.cells[1] << ", " << (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) << "],\n";
+  s << "  \"grid_lower\": [" << sim.grid.lower[0] << ", " << sim.grid.lower[1] << ", " << sim.grid.lower[2] << "],\n";
+  s << "  \"grid_upper\": [" << sim.grid.upper[0] << ", " << sim.grid.upper[1] << ", " << sim.grid.upper[2] << "],\n";
   s << "  \"shape\": \"" << ShapeTypeNames[(int)sim.shape] << "\",\n";
   s << "  \"scheme\": \"" << StepSchemeNames[(int)sim.scheme] << "\",\n";
   s << "  \"flip_fraction\": " << sim.flip_fraction << ",\n";
