@@ -4,6 +4,8 @@
 // Per cell, implicit in the exchange: (I + diag(sum_n beta) - beta) du = [sum_n beta_mn (u_n - u_m)]
 // with beta_mn = dt theta_n K_nm v_m for momentum and dt theta_n H_nm v_m / c_v,m for heat.
 // M_m beta_mn = V dt theta_m theta_n K is symmetric, so the exchange conserves momentum and energy.
+// The kinetic energy that drag removes becomes heat (with -ice_conservative_energy), shared so that
+// every material warms alike; the reference drops it.
 // Specific volume: (rho v)^L = rho v - theta kappa dp_dil + dt (theta alpha dT/dt - f sum theta
 // alpha dT/dt) with f = theta kappa / sum theta kappa (ice.md 1.1, the rate form).
 #include "ice.hpp"
@@ -55,10 +57,17 @@ PetscErrorCode IceCellExchange(IceSolver &ice)
         if (n > 1) {
           for (PetscInt m = 0; m < n; ++m)
             for (PetscInt l = 0; l < n; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_K[l][m] * c[ice.Offset(m, icef::spvol)];
+          PetscReal dissipated = 0, heat_capacity = 0; // drag turns kinetic energy into heat
           for (PetscInt d = 0; d < dim; ++d) {
             for (PetscInt m = 0; m < n; ++m) q[m] = c[ice.Offset(m, icef::vel_L + d)];
+            for (PetscInt m = 0; m < n; ++m) dissipated += 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
             ExchangeSolve(n, beta, q);
+            for (PetscInt m = 0; m < n; ++m) dissipated -= 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
             for (PetscInt m = 0; m < n; ++m) c[ice.Offset(m, icef::vel_L + d)] = q[m];
+          }
+          if (ice.conservative_energy) { // to every material alike: one temperature rise
+            for (PetscInt m = 0; m < n; ++m) heat_capacity += c[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv;
+            for (PetscInt m = 0; m < n; ++m) c[ice.Offset(m, icef::temp_L)] += PetscMax(dissipated, 0.0) / heat_capacity;
           }
           for (PetscInt m = 0; m < n; ++m)
             for (PetscInt l = 0; l < n; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
