@@ -218,7 +218,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscInt idx = ice.LocalIndex(i, j, k);
-        for (PetscInt m = 0; m < n; ++m) {
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
           PetscReal fraction = 0;
           for (PetscInt d = 0; d < dim; ++d) {
             fraction += PetscMax(0.0, -ice.face_vel[d][idx * n + m]) * ice.dt / ice.h[d];
@@ -233,7 +233,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
   // internal-energy value, whose sign is safe.
   if (ice.advect_total_energy)
     for (PetscInt idx = 0; idx < nlocal; ++idx)
-      for (PetscInt m = 0; m < n; ++m) {
+      for (PetscInt m = 0; m < ice.ngas; ++m) {
         PetscScalar *c  = a + idx * S;
         PetscReal    u2 = 0;
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
@@ -243,7 +243,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
   std::vector<PetscReal> storage((size_t)nlocal * (nq + 1));
   PetscReal             *outs[8];
   for (PetscInt q = 0; q <= nq; ++q) outs[q] = storage.data() + (size_t)q * nlocal;
-  for (PetscInt m = 0; m < n; ++m) {
+  for (PetscInt m = 0; m < ice.ngas; ++m) { // solids are not advected: the particles carry them
     PetscInt q_fields[6];
     for (PetscInt d = 0; d < dim; ++d) q_fields[d] = ice.Offset(m, icef::vel_L + d);
     q_fields[dim]     = ice.Offset(m, icef::temp_L);

@@ -17,7 +17,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
-        for (PetscInt m = 0; m < ice.nmat; ++m) {
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
           const PetscReal M = c[ice.Offset(m, icef::rho)] * V;
           PetscReal       u2 = 0;
           local[0] += M;
@@ -95,6 +95,30 @@ PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscRea
     PetscCheck(std::fclose(fp) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
     PetscCheck(std::rename(tmp.c_str(), file.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s", tmp.c_str(), file.c_str());
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+
+
+PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction)
+{
+  PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(IceGetLocalArray(ice, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt  idx  = ice.LocalIndex(i, j, k);
+        const PetscReal keep = PetscMax(1 - solid_fraction[idx], 0.0);
+        PetscScalar    *c    = a + idx * ice.stride;
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          const PetscReal floor = ice.rho_tiny / c[ice.Offset(m, icef::spvol)];
+          c[ice.Offset(m, icef::rho)] = PetscMax(c[ice.Offset(m, icef::rho)] * keep, floor);
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(IceUpdateGhosts(ice));
+  PetscCall(IceComputeTotals(ice, ice.initial));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

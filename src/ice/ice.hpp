@@ -42,6 +42,10 @@ struct IceMaterial {
   PetscReal               temperature = -1; // initial temperature, K
   PetscReal               velocity[3] = {0, 0, 0};
   PetscReal               volume_fraction = -1; // -ice_uniform_volume_fraction (else 1 where present)
+  // A solid (MPM) material as the gas sees it (ice.md 2): its mass, velocity and temperature come
+  // from the particles every step (src/coupling/); it takes part in the equilibration, the face
+  // velocities, the pressure and the exchange, but is not advected and gets no energy source.
+  bool                    solid = false;
 };
 
 // Field offsets in the cell DMDA: a block of kMatFields per material, then the cell fields.
@@ -85,7 +89,8 @@ struct IceSolver {
   PetscInt cells[3] = {1, 1, 1};
   PetscReal lower[3] = {0, 0, 0}, h[3] = {1, 1, 1};
   std::vector<IceMaterial> materials;
-  PetscInt nmat = 0;
+  PetscInt nmat = 0;  // gases first, then solids
+  PetscInt ngas = 0;
   PetscReal exchange_K[kIceMaxMaterials][kIceMaxMaterials] = {}; // momentum exchange, kg/(m^3 s)
   PetscReal exchange_H[kIceMaxMaterials][kIceMaxMaterials] = {}; // heat exchange, W/(m^3 K)
   IceFaceBC bc[3][2];
@@ -142,12 +147,20 @@ struct IceSolver {
 // Set-up (setup.cxx). `nodes` is the MPM node DMDA whose ownership the cell DMDA copies;
 // grid_* describe the box. Reads every -ice_ option and the gas materials; *ice = null when the
 // scene lists no gas materials (-ice_materials).
+// A solid material for the equilibration: its name and the equation of state that gives its
+// density at the cell pressure (ownership passes to the solver).
+struct IceSolidSpec {
+  std::string name;
+  GasEOS     *eos;
+  PetscReal   temperature; // K, until the particles give one
+};
 struct IceGridSpec {
   PetscInt  dim;
   PetscInt  cells[3];
   PetscReal lower[3], h[3];
   PetscReal gravity[3]; // m/s^2
   DM        nodes;
+  std::vector<IceSolidSpec> solids; // after the gases in material order
 };
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
 PetscErrorCode IceSetInitialState(IceSolver &ice);
@@ -183,7 +196,10 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
 // out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
 // temperature, specific volume). The arrays are overwritten for owned cells.
 void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
-PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
+PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t); // gases only
+// Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that
+// the gases fill what the solids leave at the start (ice.md 8).
+PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction);
 PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscReal time, PetscInt step);
 
 } // namespace burst

@@ -258,6 +258,28 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// Exchange with the solids: -ice_exchange_momentum_solid / -ice_exchange_heat_solid, one value for
+// every gas-solid pair (the gas-gas coefficients stay as read); solid-solid pairs are 0.
+static PetscErrorCode ReadSolidExchange(IceSolver &ice)
+{
+  PetscReal K = 1e15, H = 1e10;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(ice.comm, "", "Gas-solid exchange", "ICE");
+  PetscCall(PetscOptionsReal("-ice_exchange_momentum_solid", "Momentum exchange coefficient between each gas and each solid (kg/(m^3 s)), <= 1e20", "", K, &K, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_exchange_momentum_solid", K, 0, 1e20, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-ice_exchange_heat_solid", "Heat exchange coefficient between each gas and each solid (W/(m^3 K)), <= 1e15", "", H, &H, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_exchange_heat_solid", H, 0, 1e15, PETSC_FALSE));
+  PetscOptionsEnd();
+  for (PetscInt a = 0; a < ice.nmat; ++a)
+    for (PetscInt b = 0; b < ice.nmat; ++b) {
+      if (a < ice.ngas && b < ice.ngas) continue;
+      const bool pair = a != b && (a < ice.ngas || b < ice.ngas);
+      ice.exchange_K[a][b] = pair ? K : 0;
+      ice.exchange_H[a][b] = pair ? H : 0;
+    }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **out)
 {
   PetscFunctionBeginUser;
@@ -273,7 +295,23 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   }
   RiemannSetup rs;
   PetscCall(ReadOptions(*ice, rs, help));
-  if (ice->nmat == 0 || help) PetscFunctionReturn(PETSC_SUCCESS);
+  ice->ngas = ice->nmat;
+  if (ice->nmat == 0 || help) {
+    for (const IceSolidSpec &s : grid.solids) delete s.eos;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  // the solids, after the gases; solid-solid pairs do not exchange (MPM contact handles them)
+  PetscCheck(ice->nmat + (PetscInt)grid.solids.size() <= kIceMaxMaterials, comm, PETSC_ERR_USER_INPUT, "Gas and solid materials together: at most %d", kIceMaxMaterials);
+  for (const IceSolidSpec &s : grid.solids) {
+    IceMaterial m;
+    m.name        = s.name;
+    m.solid       = true;
+    m.temperature = s.temperature;
+    m.eos.reset(s.eos);
+    ice->materials.push_back(std::move(m));
+  }
+  ice->nmat = (PetscInt)ice->materials.size();
+  if (ice->nmat > ice->ngas) PetscCall(ReadSolidExchange(*ice));
   PetscCall(CreateDMs(*ice, grid.nodes));
   PetscClassId id;
   PetscCall(PetscClassIdRegister("burst ICE", &id));
@@ -288,7 +326,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
 
   // The initial state (ice.md 8: sub-cell sampling of each region, 4 points per direction).
   const IceSolver &cice = *ice;
-  for (PetscInt m = 0; m < cice.nmat; ++m) {
+  for (PetscInt m = 0; m < cice.ngas; ++m) {
     const IceMaterial &mat = cice.materials[m];
     const bool         in_riemann = rs.set && (m == rs.left_material || m == rs.right_material);
     if (!in_riemann) {
@@ -337,7 +375,12 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
         for (PetscInt m = 0; m < ice->nmat; ++m) {
           const IceMaterial &mat = ice->materials[m];
           PetscReal          fraction, rho_micro, T, u[3] = {0, 0, 0}, p;
-          if (rs.set && (m == rs.left_material || m == rs.right_material)) {
+          if (mat.solid) { // the coupling projects the particles before the first step
+            fraction  = 0;
+            rho_micro = mat.eos->Density(1e5, mat.temperature);
+            T         = mat.temperature;
+            p         = 1e5;
+          } else if (rs.set && (m == rs.left_material || m == rs.right_material)) {
             // one material for both sides: the state of the side holding the cell centre;
             // two materials: each its own side's state, in proportion to the sub-cell samples
             const bool      same  = rs.left_material == rs.right_material;

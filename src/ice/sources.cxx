@@ -47,7 +47,8 @@ PetscErrorCode IceSources(IceSolver &ice)
             c[ice.Offset(m, icef::vel_L + d)] = c[ice.Offset(m, icef::vel + d)] + source / rho;
           }
           PetscReal T_L;
-          if (ice.conservative_energy) {
+          if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
+          else if (ice.conservative_energy) {
             // total energy from the work of the face pressures on the face volume fluxes, minus
             // the kinetic energy the momentum source gave: conservative, so shocks move at the
             // Rankine-Hugoniot speed
