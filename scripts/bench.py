@@ -6,7 +6,10 @@
   stress update: the same 3-D block (cpGIMP) with 4340 steel, the ns per particle of the stress update
                  (MPM_Stress event of -log_view) and of the whole step, for Johnson-Cook + von Mises and
                  for the paper's full 4340 set (--stress).
-Usage: scripts/bench.py --burst build/burst [--quick] [--stress-only]"""
+  gas (--ice):   scripts/bench_ice.py: the semi-implicit pressure preconditioners and the gas
+                 cell-updates per second per core (1 and 4 gases, 2-D and 3-D, explicit and
+                 semi-implicit); --ice-only runs just that.
+Usage: scripts/bench.py --burst build/burst [--quick] [--stress-only] [--ice | --ice-only]"""
 import argparse
 import json
 import os
@@ -36,7 +39,12 @@ def main():
     p.add_argument("--shapes", default="linear,ugimp,cpgimp,bspline2")
     p.add_argument("--ranks", default="1,2")
     p.add_argument("--stress-only", action="store_true", help="only the stress-update benchmark")
+    p.add_argument("--ice", action="store_true", help="also the gas (ICE) benchmarks of scripts/bench_ice.py")
+    p.add_argument("--ice-only", action="store_true", help="only the gas (ICE) benchmarks")
     args = p.parse_args()
+    if args.ice_only:
+        ice_benchmark(args)
+        return
     if args.stress_only:
         stress_benchmark(args)
         return
@@ -70,6 +78,17 @@ def main():
     with open(os.path.join(ROOT, "build", "bench.json") if os.path.isdir(os.path.join(ROOT, "build")) else os.devnull, "w") as f:
         json.dump(rows, f, indent=1)
     stress_benchmark(args)
+    if args.ice:
+        ice_benchmark(args)
+
+
+def ice_benchmark(args):
+    """The gas figures: scripts/bench_ice.py in this process (same --burst, --quick)."""
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("bench_ice", os.path.join(ROOT, "scripts", "bench_ice.py"))
+    bench_ice = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench_ice)
+    bench_ice.main(["--burst", args.burst] + (["--quick"] if args.quick else []))
 
 
 # Material sets of the stress-update benchmark: options added to the 4340 file.

@@ -164,6 +164,9 @@ struct IceGridSpec {
 };
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
 PetscErrorCode IceSetInitialState(IceSolver &ice);
+// -ice_perturbation acoustic|entropy: a smooth Gaussian over the uniform initial state
+// (perturbation.cxx; the acoustic and low_mach verification problems). Call after IceCreate.
+PetscErrorCode IceApplyPerturbation(IceSolver &ice);
 PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer);
 PetscErrorCode IceDestroy(IceSolver **ice);
 

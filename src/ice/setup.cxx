@@ -240,8 +240,11 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
     ice.face_spvol_eff[d].assign(nlocal * ice.nmat, 0);
   }
   if (ice.da_p) {
+    // The pressure DMDA reads its own options under the KSP's prefix, so -ice_pressure_dm_mat_type
+    // aij|hyprestruct selects the matrix type (hyprestruct: 3-D only, for pc pfmg/smg).
+    PetscCall(PetscObjectSetOptionsPrefix((PetscObject)ice.da_p, "ice_pressure_"));
+    PetscCall(DMSetFromOptions(ice.da_p));
     PetscCall(DMSetUp(ice.da_p));
-    PetscCall(DMCreateMatrix(ice.da_p, &ice.A));
     PetscCall(DMCreateGlobalVector(ice.da_p, &ice.dp));
     PetscCall(VecDuplicate(ice.dp, &ice.rhs));
     PetscCall(KSPCreate(ice.comm, &ice.ksp));
@@ -250,10 +253,31 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
     PetscCall(KSPSetDMActive(ice.ksp, PETSC_FALSE));
     PetscCall(KSPSetType(ice.ksp, KSPCG));
     PetscCall(KSPSetTolerances(ice.ksp, 1e-10, 1e-50, PETSC_DEFAULT, 1000));
+    // Default preconditioner by dimension, from scripts/bench_ice.py (CG, rtol 1e-10, 1 rank; blast
+    // at the default CFL, acoustic Courant number ~0.125, and a low-Mach flow at 35 x the acoustic
+    // limit, the regime the semi-implicit path exists for). 2-D: hypre BoomerAMG, 2-7 iterations
+    // per solve and the least time per step at low Mach on 65^2-257^2 (257^2: 126 ms/step against
+    // PCMG 138, GAMG 161, Jacobi 377 with 610 iterations). 3-D: hypre PFMG on a MATHYPRESTRUCT
+    // matrix, the fastest at low Mach by 1.6-2.7x (65^3: 468 ms/step against PCMG 749, Jacobi
+    // 1040, GAMG/BoomerAMG ~1265; Uintah uses it for this equation; petsc.md 6). Jacobi is the
+    // fastest while the acoustic Courant number is small (blast: 45 ms against 142 at 257^2, 297
+    // against 414 at 65^3) but its iterations grow with the grid and the time step, so it is not
+    // the default: pass -ice_pressure_pc_type jacobi for such runs. Any -ice_pressure_pc_type
+    // overrides the default; the structured matrix is used only with pfmg/smg unless
+    // -ice_pressure_dm_mat_type says otherwise.
     PC pc;
     PetscCall(KSPGetPC(ice.ksp, &pc));
-    PetscCall(PCSetType(pc, PCGAMG));
+    if (ice.dim == 3) PetscCall(PCSetType(pc, PCPFMG));
+    else {
+      PetscCall(PCSetType(pc, PCHYPRE));
+      PetscCall(PCHYPRESetType(pc, "boomeramg"));
+    }
     PetscCall(KSPSetFromOptions(ice.ksp));
+    PetscBool mat_type_set, structured;
+    PetscCall(PetscOptionsHasName(nullptr, "ice_pressure_", "-dm_mat_type", &mat_type_set));
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &structured, PCPFMG, PCSMG, ""));
+    if (structured && !mat_type_set) PetscCall(DMSetMatType(ice.da_p, MATHYPRESTRUCT));
+    PetscCall(DMCreateMatrix(ice.da_p, &ice.A));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
