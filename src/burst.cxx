@@ -58,7 +58,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   // 3. The gas, on cells of the same grid (null without -ice_materials)
   {
     const Grid &g = sim.grid;
-    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes};
+    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}};
     PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }

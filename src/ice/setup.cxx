@@ -57,7 +57,7 @@ static PetscErrorCode ReadExchange(IceSolver &ice, PetscOptionItems *PetscOption
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs, PetscBool help)
+static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
 {
   char     *names[kIceMaxMaterials];
   PetscInt  n = kIceMaxMaterials;
@@ -318,7 +318,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
     ice->gravity[d] = grid.gravity[d];
   }
   RiemannSetup rs;
-  PetscCall(ReadOptions(*ice, rs, help));
+  PetscCall(ReadOptions(*ice, rs));
   ice->ngas = ice->nmat;
   if (ice->nmat == 0 || help) {
     for (const IceSolidSpec &s : grid.solids) delete s.eos;
