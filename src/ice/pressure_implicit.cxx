@@ -5,7 +5,8 @@
 //   residual  r_c = -V sum kappa_c (P^k - p_eq) - dt sum_m sum_f theta_hat u^k_m,f A_f n_f
 //   matrix    A_cc = V sum kappa_c + sum_f a_f,  A_c,nb(f) = -a_f,
 //             a_f = (A_f/dx_f) dt^2 sum_m theta_hat_m,f vtilde_m,f        (5-point / 7-point, SPD)
-//   solve     A dP = r with KSP (prefix -ice_pressure_; CG + GAMG by default)
+//   solve     A dP = r with KSP (prefix -ice_pressure_; CG with BoomerAMG in 2-D, PFMG in 3-D by
+//             default: setup.cxx says why)
 //   correct   u*_m,f -= dt vbar_m,f (dP_R - dP_L)/dx, then redo the face exchange
 // until max_c |r_c|/V < -ice_outer_tolerance. Domain faces are Neumann (their velocity is set by
 // the boundary condition), so V sum kappa keeps A nonsingular. theta_hat in the matrix is the
