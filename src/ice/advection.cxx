@@ -189,8 +189,9 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
   const PetscInt nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   PetscFunctionBeginUser;
   out.assign(nlocal, 0);
-  std::vector<PetscReal> inc(nlocal);
-  PetscReal             *outs[1] = {inc.data()};
+  std::vector<PetscReal> &inc     = ice.work_increment;
+  inc.resize(nlocal);
+  PetscReal *outs[1] = {inc.data()};
   for (PetscInt m = 0; m < ice.nmat; ++m) {
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::theta), nullptr, 0, outs);
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -203,9 +204,9 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Advects M, M u, M T and M v of every material with the Lagrangian values of this step, then
-// recovers the primitive state; a non-positive density, temperature or specific volume stops the
-// run with the step, cell, material and field (ice.md 7.6).
+// Advects M, M u and M E (or M c_v T) of every gas with the Lagrangian values of this step, then
+// recovers the primitive state; a non-positive density or temperature, or a non-finite velocity,
+// stops the run with the step, cell, material and field (ice.md 7.6).
 PetscErrorCode IceAdvect(IceSolver &ice)
 {
   PetscScalar   *a;
@@ -227,11 +228,11 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           PetscCheck(fraction <= 1, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": material %s leaves cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") with %g of its volume in one step (more than the cell); reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)fraction);
         }
       }
-  // Total energy: advect c_v T + |u|^2/2 too, so the kinetic energy that the remap averages away
-  // becomes heat (the reference advects c_v T only, ice.md 1.7). Materials present in a cell
-  // take their temperature from it; a trace material (theta < 1e-6, mass ~ rho_tiny) keeps the
-  // internal-energy value, whose sign is safe.
-  if (ice.advect_total_energy)
+  // Total energy: advect c_v T + |u|^2/2 instead of c_v T, so the kinetic energy that the remap
+  // averages away becomes heat (the reference advects c_v T only, ice.md 1.7). A trace material
+  // (theta < 1e-6, mass ~ rho_tiny), whose energy is meaningless, keeps its Lagrangian temperature.
+  const bool total = ice.advect_total_energy;
+  if (total)
     for (PetscInt idx = 0; idx < nlocal; ++idx)
       for (PetscInt m = 0; m < ice.ngas; ++m) {
         PetscScalar *c  = a + idx * S;
@@ -239,17 +240,16 @@ PetscErrorCode IceAdvect(IceSolver &ice)
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
         c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + 0.5 * u2 / ice.materials[m].eos->cv;
       }
-  const PetscInt nq = dim + 2 + (ice.advect_total_energy ? 1 : 0);
-  std::vector<PetscReal> storage((size_t)nlocal * (nq + 1));
-  PetscReal             *outs[8];
-  for (PetscInt q = 0; q <= nq; ++q) outs[q] = storage.data() + (size_t)q * nlocal;
+  const PetscInt nq = dim + 1; // velocity components, then energy (or temperature)
+  ice.work_advect.resize((size_t)nlocal * (nq + 1));
+  PetscReal *outs[5];
+  for (PetscInt q = 0; q <= nq; ++q) outs[q] = ice.work_advect.data() + (size_t)q * nlocal;
   for (PetscInt m = 0; m < ice.ngas; ++m) { // solids are not advected: the particles carry them
-    PetscInt q_fields[6];
+    PetscInt q_fields[4];
     for (PetscInt d = 0; d < dim; ++d) q_fields[d] = ice.Offset(m, icef::vel_L + d);
-    q_fields[dim]     = ice.Offset(m, icef::temp_L);
-    q_fields[dim + 1] = ice.Offset(m, icef::spvol_L);
-    q_fields[dim + 2] = ice.Offset(m, icef::energy_L);
+    q_fields[dim] = ice.Offset(m, total ? icef::energy_L : icef::temp_L);
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
+    const PetscReal cv = ice.materials[m].eos->cv;
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
       for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
         for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -259,25 +259,23 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           const PetscReal rho   = rho_L + outs[0][idx];
           const char     *bad   = nullptr;
           if (!(rho > 0)) bad = "density";
-          PetscReal u[3] = {0, 0, 0};
-          for (PetscInt d = 0; d < dim; ++d) u[d] = (rho_L * c[ice.Offset(m, icef::vel_L + d)] + outs[1 + d][idx]) / rho;
-          PetscReal       T = (rho_L * c[ice.Offset(m, icef::temp_L)] + outs[1 + dim][idx]) / rho;
-          const PetscReal v = (rho_L * c[ice.Offset(m, icef::spvol_L)] + outs[2 + dim][idx]) / rho;
-          if (ice.advect_total_energy && c[ice.Offset(m, icef::theta)] >= 1e-6) {
-            PetscReal u2 = 0;
-            for (PetscInt d = 0; d < dim; ++d) u2 += u[d] * u[d];
-            const PetscReal T_total = (rho_L * c[ice.Offset(m, icef::energy_L)] + outs[3 + dim][idx]) / rho - 0.5 * u2 / ice.materials[m].eos->cv;
-            if (T_total > 0) T = T_total;
+          PetscReal u[3] = {0, 0, 0}, u2 = 0;
+          for (PetscInt d = 0; d < dim; ++d) {
+            u[d] = (rho_L * c[ice.Offset(m, icef::vel_L + d)] + outs[1 + d][idx]) / rho;
+            u2 += u[d] * u[d];
+          }
+          PetscReal T = (rho_L * c[q_fields[dim]] + outs[1 + dim][idx]) / rho;
+          if (total) {
+            T -= 0.5 * u2 / cv;
+            if (!(T > 0) && c[ice.Offset(m, icef::theta)] < 1e-6) T = c[ice.Offset(m, icef::temp_L)];
           }
           if (!bad && !(T > 0)) bad = "temperature";
-          if (!bad && !(v > 0)) bad = "specific volume";
           for (PetscInt d = 0; d < dim && !bad; ++d)
             if (!std::isfinite(u[d])) bad = "velocity";
-          PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": after advection the %s of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") is not positive and finite (density %g kg/m^3, temperature %g K, specific volume %g m^3/kg); reduce -ice_cfl", ice.step, bad, ice.materials[m].name.c_str(), i, j, k, (double)rho, (double)T, (double)v);
+          PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": after advection the %s of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") is not positive and finite (density %g kg/m^3, temperature %g K); reduce -ice_cfl", ice.step, bad, ice.materials[m].name.c_str(), i, j, k, (double)rho, (double)T);
           c[ice.Offset(m, icef::rho)] = rho;
           for (PetscInt d = 0; d < dim; ++d) c[ice.Offset(m, icef::vel + d)] = u[d];
-          c[ice.Offset(m, icef::temp)]  = T;
-          c[ice.Offset(m, icef::spvol)] = v;
+          c[ice.Offset(m, icef::temp)] = T;
         }
   }
   PetscCall(IceRestoreLocalArray(ice, &a));

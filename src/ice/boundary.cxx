@@ -71,9 +71,10 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
                   for (int fset = 0; fset < 2; ++fset) { // state and Lagrangian copies
                     cg[ice.Offset(m, fset ? icef::rho_L : icef::rho)]     = rho;
                     cg[ice.Offset(m, fset ? icef::temp_L : icef::temp)]   = T;
-                    cg[ice.Offset(m, fset ? icef::spvol_L : icef::spvol)] = 1 / rho0;
                     for (PetscInt c = 0; c < 3; ++c) cg[ice.Offset(m, (fset ? icef::vel_L : icef::vel) + c)] = bc.state[1 + c];
                   }
+                  cg[ice.Offset(m, icef::spvol)] = 1 / rho0;
+                  cg[ice.Offset(m, icef::energy_L)] = T; // (kinetic part set by the advection)
                   cg[ice.Offset(m, icef::theta)] = in ? 1 : ice.rho_tiny;
                 }
               }
@@ -83,17 +84,30 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The local vector is the working copy; ghosts come from the neighbours' owned cells directly
+// (DMLocalToLocal), and the global vector is brought up to date only for output.
 PetscErrorCode IceUpdateGhosts(IceSolver &ice)
 {
   PetscScalar *a;
+  PetscMPIInt  size;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_bc, 0, 0, 0, 0));
-  PetscCall(DMLocalToGlobal(ice.da, ice.local, INSERT_VALUES, ice.state));
-  PetscCall(DMGlobalToLocal(ice.da, ice.state, INSERT_VALUES, ice.local));
+  PetscCallMPI(MPI_Comm_size(ice.comm, &size));
+  if (size > 1) {
+    PetscCall(DMLocalToLocalBegin(ice.da, ice.local, INSERT_VALUES, ice.local));
+    PetscCall(DMLocalToLocalEnd(ice.da, ice.local, INSERT_VALUES, ice.local));
+  }
   PetscCall(IceGetLocalArray(ice, &a));
   PetscCall(IceApplyBoundaryGhosts(ice, a));
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(PetscLogEventEnd(ice.ev_bc, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceSyncGlobal(IceSolver &ice)
+{
+  PetscFunctionBeginUser;
+  PetscCall(DMLocalToGlobal(ice.da, ice.local, INSERT_VALUES, ice.state));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -4,7 +4,7 @@
 // log p as the fallback; a cell where both fail stops the run with its state.
 //
 // Then the derived fields of each material: theta, specific volume 1/rho_micro, sound speed,
-// compressibility kappa = v/c^2, the compression-work pressure T dP/dT and the expansivity.
+// compressibility kappa = v/c^2 and the compression-work pressure T dP/dT.
 // Cells are independent, so every local cell (ghosts included) is equilibrated: the face phase
 // needs its neighbours' values without another ghost exchange.
 #include "ice.hpp"
@@ -100,7 +100,6 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       c[ice.Offset(m, icef::sound2)] = c2;
       c[ice.Offset(m, icef::kappa)]  = 1 / (rho_micro[m] * c2);
       c[ice.Offset(m, icef::work_p)] = T * s.dp_dT;
-      c[ice.Offset(m, icef::alpha)]  = s.dp_dT == 0 ? 0 : s.dp_dT / (rho_micro[m] * s.dp_drho);
       sum_kappa += theta / (rho_micro[m] * c2);
     }
     c[ice.CellOffset(icef::press_eq)]  = p;

@@ -8,24 +8,9 @@
 // lower face of each local cell, for every local cell that has a lower neighbour, so each rank
 // has every face of its own cells and of the first ghost layer without communication.
 #include "ice.hpp"
+#include "exchange_matrix.hpp"
 
 namespace burst {
-
-// Solves E x = b for the n x n exchange matrix (diagonally dominant: no pivoting needed).
-static void SolveSmall(PetscInt n, PetscReal E[kIceMaxMaterials][kIceMaxMaterials], PetscReal b[kIceMaxMaterials])
-{
-  for (PetscInt k = 0; k < n; ++k)
-    for (PetscInt i = k + 1; i < n; ++i) {
-      const PetscReal f = E[i][k] / E[k][k];
-      for (PetscInt j = k; j < n; ++j) E[i][j] -= f * E[k][j];
-      b[i] -= f * b[k];
-    }
-  for (PetscInt i = n - 1; i >= 0; --i) {
-    PetscReal s = b[i];
-    for (PetscInt j = i + 1; j < n; ++j) s -= E[i][j] * b[j];
-    b[i] = s / E[i][i];
-  }
-}
 
 void IceFaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx)
 {
@@ -38,27 +23,14 @@ void IceFaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt 
     return;
   }
   const PetscScalar *cL = a + (idx - ice.lstride[d]) * S, *cR = a + idx * S;
-  PetscReal          E[kIceMaxMaterials][kIceMaxMaterials], E2[kIceMaxMaterials][kIceMaxMaterials], du[kIceMaxMaterials], v[kIceMaxMaterials];
-  for (PetscInt m = 0; m < n; ++m) {
-    PetscReal sum = 0;
-    for (PetscInt k = 0; k < n; ++k) {
-      const PetscReal beta = k == m ? 0 : ice.dt * 0.5 * (cL[ice.Offset(k, icef::theta)] + cR[ice.Offset(k, icef::theta)]) * ice.exchange_K[m][k] * vbar[m];
-      E[m][k]              = -beta;
-      sum += beta;
-    }
-    E[m][m] = 1 + sum;
-    du[m]   = 0;
-    for (PetscInt k = 0; k < n; ++k) du[m] += -E[m][k] * (k == m ? 0 : 1) * (ustar[k] - ustar[m]);
-    v[m] = vbar[m];
-  }
+  PetscReal          beta[kIceMaxMaterials][kIceMaxMaterials];
   for (PetscInt m = 0; m < n; ++m)
-    for (PetscInt k = 0; k < n; ++k) E2[m][k] = E[m][k];
-  SolveSmall(n, E, du);
-  SolveSmall(n, E2, v);
-  for (PetscInt m = 0; m < n; ++m) {
-    u[m]    = ustar[m] + du[m];
-    veff[m] = v[m];
-  }
+    for (PetscInt k = 0; k < n; ++k) beta[m][k] = k == m ? 0 : ice.dt * 0.5 * (cL[ice.Offset(k, icef::theta)] + cR[ice.Offset(k, icef::theta)]) * ice.exchange_K[m][k] * vbar[m];
+  ExchangeMatrix E{n, {}};
+  E.Factor(beta);
+  for (PetscInt m = 0; m < n; ++m) u[m] = ustar[m];
+  E.Apply(beta, u);
+  if (ice.pressure_solver == IcePressureSolver::SemiImplicit) E.Solve(vbar, veff); // the matrix's effective v
 }
 
 PetscErrorCode IceFaceVelocities(IceSolver &ice)

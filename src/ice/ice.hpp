@@ -53,18 +53,16 @@ namespace icef {
 inline constexpr int rho = 0;       // bulk density M_m/V, kg/m^3
 inline constexpr int vel = 1;       // velocity, 3 components (unused ones 0), m/s
 inline constexpr int temp = 4;      // temperature, K
-inline constexpr int spvol = 5;     // specific volume of the material, 1/rho_micro, m^3/kg
+inline constexpr int spvol = 5;     // specific volume of the material, 1/rho_micro, m^3/kg (equilibration)
 inline constexpr int theta = 6;     // volume fraction
 inline constexpr int kappa = 7;     // isentropic compressibility v/c^2, 1/Pa
 inline constexpr int work_p = 8;    // T (dP/dT)_rho: the pressure that does compression work, Pa
-inline constexpr int alpha = 9;     // thermal expansivity, 1/K
-inline constexpr int sound2 = 10;   // sound speed squared, m^2/s^2
-inline constexpr int rho_L = 11;    // Lagrangian bulk density, kg/m^3
-inline constexpr int vel_L = 12;    // Lagrangian (after sources and exchange) velocity, 3 components
-inline constexpr int temp_L = 15;   // Lagrangian temperature, K
-inline constexpr int spvol_L = 16;  // Lagrangian specific volume, m^3/kg
-inline constexpr int energy_L = 17; // Lagrangian total energy over c_v, T + |u|^2/(2 c_v), K
-inline constexpr int kMatFields = 18;
+inline constexpr int sound2 = 9;    // sound speed squared, m^2/s^2
+inline constexpr int rho_L = 10;    // Lagrangian bulk density, kg/m^3
+inline constexpr int vel_L = 11;    // Lagrangian (after sources and exchange) velocity, 3 components
+inline constexpr int temp_L = 14;   // Lagrangian temperature, K
+inline constexpr int energy_L = 15; // Lagrangian total energy over c_v, T + |u|^2/(2 c_v), K
+inline constexpr int kMatFields = 16;
 // cell fields after the material blocks
 inline constexpr int press = 0;     // pressure at the end of the step (p^{n+1}), Pa
 inline constexpr int press_eq = 1;  // equilibration pressure of this step, Pa
@@ -126,7 +124,7 @@ struct IceSolver {
   // direction and material: velocity after exchange, before exchange, effective specific volume.
   std::vector<PetscReal> face_vel[3], face_vel_star[3], face_spvol[3], face_spvol_eff[3];
   // Work arrays for advection (gradients, fluxes) and the semi-implicit solve.
-  std::vector<PetscReal> work_grad, work_adv, work_outflow;
+  std::vector<PetscReal> work_grad, work_adv, work_outflow, work_increment, work_advect;
 
   // Step state
   PetscReal dt = 0, time = 0;
@@ -183,6 +181,7 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice);
 
 // Helpers shared by the phases.
 PetscErrorCode IceUpdateGhosts(IceSolver &ice);          // owned -> ghosts, then boundary ghosts
+PetscErrorCode IceSyncGlobal(IceSolver &ice);            // the global vector from the local one (output)
 PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a);
 void           IceBoundaryFaceVelocities(IceSolver &ice); // wall/symmetry/inflow face values
 PetscErrorCode IceGetLocalArray(IceSolver &ice, PetscScalar **a);

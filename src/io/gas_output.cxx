@@ -40,6 +40,7 @@ PetscErrorCode WriteGasOutput(Simulation &sim)
   char        name[64];
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_output, 0, 0, 0, 0));
+  PetscCall(IceSyncGlobal(ice));
   std::snprintf(name, sizeof(name), "gas_%06d.h5", (int)sim.step);
   const std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
   const std::vector<GridField> fields = GasFields(ice);
