@@ -71,10 +71,12 @@ public:
   const char *Name() const { return name_.c_str(); }
   const char *Model() const { return model_.c_str(); }
   PetscReal   Density() const { return density_; }
+  PetscReal   BulkModulus() const { return bulk_modulus_; }
 
   std::string name_;         // user's name, also the options prefix
   std::string model_;        // registered model name
   PetscReal   density_ = -1; // reference mass density, kg/m^3
+  PetscReal   bulk_modulus_ = -1; // reference bulk modulus, Pa (the solid's volume as the gas sees it, ice.md 2.2)
   PetscInt    id_      = -1; // material id (index in -materials) of its particles
   PetscInt    registered_bytes_ = 0; // bytes per particle of the fields RegisterFields added
 };

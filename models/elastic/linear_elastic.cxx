@@ -14,7 +14,13 @@ class LinearElastic final : public Material {
 public:
   IsotropicElasticity elastic;
 
-  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override { return elastic.SetFromOptions(PetscOptionsObject, *this); }
+  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(elastic.SetFromOptions(PetscOptionsObject, *this));
+    bulk_modulus_ = elastic.bulk_modulus;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
 
   PetscErrorCode UpdateStress(const MaterialPointFields &f, PetscInt id, PetscReal dt) override
   {

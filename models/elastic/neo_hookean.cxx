@@ -13,7 +13,13 @@ class NeoHookean final : public Material {
 public:
   IsotropicElasticity elastic;
 
-  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override { return elastic.SetFromOptions(PetscOptionsObject, *this); }
+  PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
+  {
+    PetscFunctionBeginUser;
+    PetscCall(elastic.SetFromOptions(PetscOptionsObject, *this));
+    bulk_modulus_ = elastic.bulk_modulus;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
 
   // Longitudinal wave speed from the tangent moduli at J: lambda/J and (mu - lambda ln J)/J.
   inline PetscReal WaveSpeed(PetscReal J) const

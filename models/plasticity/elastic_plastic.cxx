@@ -147,6 +147,7 @@ public:
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "shear_modulus").c_str(), constants.shear_modulus, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscCall(OptionsRequiredReal(PetscOptionsObject, "-bulk_modulus", "Reference bulk modulus K0 (Pa), > 0", &constants.bulk_modulus));
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "bulk_modulus").c_str(), constants.bulk_modulus, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    bulk_modulus_ = constants.bulk_modulus;
     PetscCall(PetscOptionsReal("-room_temperature", "Room (reference) temperature (K)", "", constants.room_temperature, &constants.room_temperature, nullptr));
     PetscCall(PetscOptionsReal("-taylor_quinney", "Fraction of plastic work converted to heat, chi of eq. 18 (-), in [0, 1]", "", taylor_quinney, &taylor_quinney, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "taylor_quinney").c_str(), taylor_quinney, 0, 1, PETSC_FALSE));
