@@ -15,6 +15,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "mpm/analytic.hpp"
 #include "util.hpp"
 #include "ice/ice.hpp"
+#include "coupling/coupling.hpp"
 
 using namespace burst;
 
@@ -37,6 +38,7 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.ev_monitor));
   PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.ev_loads));
   PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.ev_output));
+  PetscCall(PetscLogEventRegister("Coupling", id, &sim.ev_coupling));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -59,7 +61,9 @@ static PetscErrorCode SetUp(Simulation &sim)
   {
     const Grid &g = sim.grid;
     IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}};
+    if (!sim.materials.empty() && IceMaterialsRequested(sim.comm)) PetscCall(CouplingSolidMaterials(sim, spec.solids));
     PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
+    if (!sim.ice && sim.coupling) PetscCall(CouplingDestroy(sim));
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }
   if (sim.help) {
@@ -76,6 +80,8 @@ static PetscErrorCode SetUp(Simulation &sim)
     PetscCall(ComputeInitialWaveSpeed(sim));
     PetscCall(CheckParticleState(sim, "seeding"));
   }
+  // 5. Gas and particles meet (src/coupling/)
+  if (sim.coupling) PetscCall(CouplingSetUp(sim));
   PetscCall(OutputSetUp(sim));
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -162,6 +168,7 @@ int main(int argc, char **argv)
         PetscCall(View(sim));
         PetscCall(Run(sim));
       }
+      PetscCall(CouplingDestroy(sim));
       PetscCall(IceDestroy(&sim.ice));
     }
   }

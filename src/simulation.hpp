@@ -46,6 +46,7 @@ inline constexpr const char *load_curve      = "load_curve";        // int: inde
 inline constexpr const char *material        = "material";          // int: material id
 inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
 inline constexpr const char *fragment        = "fragment";          // int: fragment id of intact particles, -1 otherwise
+inline constexpr const char *ambient_pressure = "ambient_pressure"; // Pa: pressure of a surrounding gas less its reference (only with gas)
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
@@ -60,6 +61,8 @@ class AnalyticSolution;
 
 // The gas solver (src/ice/): its own state, null when the scene has no gas materials.
 struct IceSolver;
+// The coupling of gas and particles (src/coupling/), null unless the scene has both.
+struct Coupling;
 
 // A geometry object from which particles are seeded (src/seed.cxx).
 struct Geometry;
@@ -120,6 +123,7 @@ struct Simulation {
   PetscReal   densest = 0;                 // kg/m^3, largest material density
   PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
   PetscBool   convert_failed = PETSC_FALSE; // failed particles move in a velocity field of their own
+  PetscBool   ambient_pressure = PETSC_FALSE; // particles carry a surrounding gas's pressure (the coupling sets it)
   ContactType contact = ContactType::Friction;
   PetscReal   friction = 0;                // Coulomb coefficient of the contact between fields
   PetscInt    rigid_material = -1;         // material id of the rigid body, -1 if none
@@ -149,7 +153,8 @@ struct Simulation {
   std::vector<std::unique_ptr<Geometry>>  geometries;
   std::vector<LoadCurve>                  load_curves;
   std::unique_ptr<AnalyticSolution>       analytic;
-  IceSolver                              *ice = nullptr; // owned by the driver (burst.cxx)
+  IceSolver                              *ice = nullptr;      // owned by the driver (burst.cxx)
+  Coupling                               *coupling = nullptr; // owned by the driver
   bool HasParticles() const { return swarm != nullptr; }
 
   // State
@@ -164,7 +169,7 @@ struct Simulation {
 
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
-  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads;
+  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads, ev_coupling;
 
   ~Simulation();
 };

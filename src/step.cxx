@@ -12,10 +12,17 @@
 //   face pressure, momentum and energy sources, Lagrangian values -> cell exchange, Lagrangian
 //   specific volume -> advection, conserved to primitive
 //
-// Every phase is a named function with its own PetscLogEvent. The two solvers meet only in the
-// time step here until src/coupling/ joins them.
+// Solids and gas together (ice.md 1.2, the full table; USL or MUSL for the particles):
+//   P2G(m, mv) -> solids to cells -> equilibration -> face velocities -> pressure -> pressure to the
+//   particles -> P2G(f, with sigma + (p - p_ref) I) -> grid update -> the solids' nodal velocity to
+//   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> G2P ->
+//   exchange heat to the particles -> stress -> migrate -> gas advection
+//
+// Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
+// src/coupling/.
 #include "simulation.hpp"
 #include "ice/ice.hpp"
+#include "coupling/coupling.hpp"
 
 namespace burst {
 
@@ -68,6 +75,40 @@ static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// Solids and gas in one step (ice.md 1.2).
+static PetscErrorCode CoupledStep(Simulation &sim)
+{
+  IceSolver &ice = *sim.ice;
+  PetscFunctionBeginUser;
+  ice.dt = sim.dt;
+  PetscCall(ComputeExternalForces(sim));
+  PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(CouplingProjectSolids(sim));
+  PetscCall(IceEquilibrate(ice));
+  PetscCall(IceFaceVelocities(ice));
+  PetscCall(IceUpdatePressure(ice));
+  PetscCall(CouplingPressureToParticles(sim));
+  PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+  PetscCall(GridUpdate(sim));
+  PetscCall(CouplingSolidVelocity(sim));
+  PetscCall(IceSources(ice));
+  PetscCall(IceCellExchange(ice));
+  PetscCall(CouplingIncrementsToNodes(sim));
+  if (sim.scheme == StepScheme::MUSL) {
+    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
+    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(GridVelocityFromMomentum(sim));
+    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
+  } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+  PetscCall(CouplingHeatToParticles(sim));
+  PetscCall(UpdateStress(sim));
+  PetscCall(MigrateParticles(sim));
+  PetscCall(IceAdvect(ice));
+  ice.time += sim.dt;
+  ice.step += 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 // The step size: the smaller of the MPM and gas limits, ending exactly at -final_time.
 static PetscErrorCode StableTimeStep(Simulation &sim)
 {
@@ -90,8 +131,11 @@ PetscErrorCode TakeStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscCall(StableTimeStep(sim));
-  if (sim.HasParticles()) PetscCall(MPMStep(sim));
-  if (sim.ice) PetscCall(ICEStep(*sim.ice, sim.dt));
+  if (sim.coupling) PetscCall(CoupledStep(sim));
+  else {
+    if (sim.HasParticles()) PetscCall(MPMStep(sim));
+    if (sim.ice) PetscCall(ICEStep(*sim.ice, sim.dt));
+  }
   sim.time += sim.dt;
   sim.step += 1;
   sim.particle_steps += sim.total_particles;

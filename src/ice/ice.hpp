@@ -161,6 +161,8 @@ struct IceGridSpec {
   std::vector<IceSolidSpec> solids; // after the gases in material order
 };
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
+// Whether the options list gas materials (-ice_materials), before the solver is created.
+bool           IceMaterialsRequested(MPI_Comm comm);
 PetscErrorCode IceSetInitialState(IceSolver &ice);
 // -ice_perturbation acoustic|entropy: a smooth Gaussian over the uniform initial state
 // (perturbation.cxx; the acoustic and low_mach verification problems). Call after IceCreate.

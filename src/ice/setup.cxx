@@ -282,6 +282,13 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+bool IceMaterialsRequested(MPI_Comm)
+{
+  PetscBool set = PETSC_FALSE;
+  PetscOptionsHasName(nullptr, nullptr, "-ice_materials", &set);
+  return set;
+}
+
 // Exchange with the solids: -ice_exchange_momentum_solid / -ice_exchange_heat_solid, one value for
 // every gas-solid pair (the gas-gas coefficients stay as read); solid-solid pairs are 0.
 static PetscErrorCode ReadSolidExchange(IceSolver &ice)

@@ -17,7 +17,7 @@ struct P2GKernel {
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
-    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q;
+    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr;
     const PetscInt      *failed = nullptr, *material = nullptr;
     const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
@@ -32,13 +32,14 @@ struct P2GKernel {
     PetscCall(fields.Get(field::stress, &sigma));
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::bulk_viscosity, &q));
+    if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
     if (nvf > 1) PetscCall(fields.Get(field::material, &material));
     if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
     Stencil<DIM, S> st;
     const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      const PetscReal  mp = m[p], Vp = vol[p], qp = q[p];
+      const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
       const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
       const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {

@@ -255,6 +255,8 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscInt  *fragment;
   PetscCall(fields.Get(field::bulk_viscosity, &q));
   PetscCall(fields.Get(field::fragment, &fragment));
+  PetscReal *ambient = nullptr;
+  if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
   for (PetscInt p = 0; p < n; ++p) {
     const Geometry &geo = *sim.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
@@ -273,6 +275,7 @@ PetscErrorCode SeedParticles(Simulation &sim)
     curve[p] = -1;
     q[p]        = 0;
     fragment[p] = -1;
+    if (ambient) ambient[p] = 0;
     for (PetscInt d = 0; d < dim; ++d) {
       x[p * dim + d]    = points[p].x[d];
       X0[p * dim + d]   = points[p].x[d];

@@ -1,0 +1,434 @@
+// MPM-ICE coupling: projections between particles, nodes and cells (ice.md 2.1-2.3).
+//
+// Node -> cell weights: a cell averages its 2^dim corner nodes (1/4 in 2-D, 1/8 in 3-D); a node on
+// a domain face has only half the cells around it, so its weight is doubled there (ice.md 7.10),
+// and every node's mass reaches the cells in full. Cell -> node: a node takes the solid-mass
+// weighted mean of the increments of the cells around it, so a cell that holds only the tiny
+// trace mass of a solid (which the exchange drags to the gas velocity) does not move the solid.
+#include "coupling.hpp"
+#include "../mpm/grid_index.hpp"
+#include "../mpm/swarm_access.hpp"
+#include "../util.hpp"
+#include <cmath>
+
+namespace burst {
+
+// The solid's volume as the gas sees it (ice.md 2.2): p = p_ref + K/2 (rho/rho0 - rho0/rho) in
+// compression and the reference's modified form p = p_ref (rho/rho0)^(K/p_ref) below rho0, which
+// stays positive so that a solid in tension lets go of the gas. No thermal part.
+class SolidCouplingEOS final : public GasEOS {
+public:
+  PetscReal K = 0, rho0 = 0, p_ref = 101325, T_ref = 300;
+  PetscErrorCode SetFromOptions(PetscOptionItems *, const char[]) override { return PETSC_SUCCESS; }
+  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "solid coupling EOS: bulk modulus %g Pa, density %g kg/m^3, reference pressure %g Pa, c_v %g J/(kg K)\n", (double)K, (double)rho0, (double)p_ref, (double)cv); }
+  GasEOSPoint    Evaluate(PetscReal rho, PetscReal) const override
+  {
+    if (rho >= rho0) return {p_ref + 0.5 * K * (rho / rho0 - rho0 / rho), 0.5 * K * (1 / rho0 + rho0 / (rho * rho)), 0};
+    const PetscReal p = p_ref * std::pow(rho / rho0, K / p_ref);
+    return {p, K / rho * p / p_ref, 0};
+  }
+  PetscReal Density(PetscReal p, PetscReal) const override
+  {
+    if (p >= p_ref) {
+      const PetscReal g = (p - p_ref) / K;
+      return rho0 * (g + std::sqrt(g * g + 1));
+    }
+    return p > 0 ? rho0 * std::pow(p / p_ref, p_ref / K) : -1;
+  }
+  PetscReal Temperature(PetscReal, PetscReal) const override { return T_ref; }
+};
+
+struct Coupling {
+  PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
+  std::vector<PetscInt> solid_of;              // MPM material id -> solid index
+  PetscReal             p_ref = 101325;
+  DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
+  Vec                   mass_global = nullptr, mass_local = nullptr;
+  DM                    da_inc = nullptr;      // nodes: [p, dv (dim), dT]
+  Vec                   inc_global = nullptr, inc_local = nullptr;
+  PetscInt              mass_stride = 0;
+  ~Coupling()
+  {
+    VecDestroy(&mass_global);
+    VecDestroy(&mass_local);
+    VecDestroy(&inc_global);
+    VecDestroy(&inc_local);
+    DMDestroy(&da_mass);
+    DMDestroy(&da_inc);
+  }
+};
+
+PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec> &solids)
+{
+  PetscFunctionBeginUser;
+  auto c = std::make_unique<Coupling>();
+  PetscOptionsBegin(sim.comm, "", "Gas-solid coupling", "Coupling");
+  PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
+  PetscCall(CheckRange(sim.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscOptionsEnd();
+  c->solid_of.assign(sim.materials.size(), -1);
+  for (size_t m = 0; m < sim.materials.size(); ++m) {
+    const Material &mat = *sim.materials[m];
+    PetscReal       v[3];
+    PetscCheck(!mat.IsRigid(v), sim.comm, PETSC_ERR_SUP, "Material %s: a rigid body in a scene with gas is not supported yet", mat.Name());
+    PetscCheck(mat.BulkModulus() > 0, sim.comm, PETSC_ERR_SUP, "Material %s (model %s) reports no bulk modulus, which the gas coupling needs", mat.Name(), mat.Model());
+    auto      eos  = std::make_unique<SolidCouplingEOS>();
+    eos->K         = mat.BulkModulus();
+    eos->rho0      = mat.Density();
+    eos->p_ref     = c->p_ref;
+    PetscBool set  = PETSC_FALSE;
+    std::string pre = std::string(mat.Name()) + "_";
+    PetscOptionsBegin(sim.comm, pre.c_str(), "Solid as the gas sees it", "Coupling");
+    PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat of the solid for the heat exchange with the gas (J/(kg K)), > 0; required with gas", "", eos->cv, &eos->cv, &set));
+    PetscOptionsEnd();
+    PetscCheck(set || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Material %s: a scene with gas needs -%sheat_capacity (J/(kg K), > 0) for the heat exchange", mat.Name(), pre.c_str());
+    PetscCall(CheckRange(sim.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    c->solid_of[m] = c->nsolid++;
+    eos->name_     = "solid_coupling";
+    solids.push_back({mat.Name(), eos.release(), 300});
+  }
+  sim.coupling         = c.release();
+  sim.ambient_pressure = PETSC_TRUE;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+namespace {
+// Weight of node (i, j, k) for a cell it bounds: 1/2 per direction, 1 on a domain face.
+inline PetscReal NodeWeight(const IceSolver &ice, const PetscInt node[3])
+{
+  PetscReal w = 1;
+  for (PetscInt d = 0; d < ice.dim; ++d) w *= (node[d] == 0 || node[d] == ice.cells[d]) ? 1.0 : 0.5;
+  return w;
+}
+
+// Particles -> nodes, per solid material: mass, mass T, momentum.
+struct ProjectKernel {
+  Simulation  &sim;
+  Coupling    &c;
+  PetscScalar *out;
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const LocalNodeIndex index(g);
+    const PetscInt       stride = 2 + DIM, dof = c.mass_stride;
+    PetscInt             n;
+    const PetscReal     *x, *v, *m, *T, *hw, *F;
+    const PetscInt      *mat;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::velocity, &v));
+    PetscCall(fields.Get(field::mass, &m));
+    PetscCall(fields.Get(field::temperature, &T));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(field::material, &mat));
+    Stencil<DIM, S> st;
+    for (PetscInt p = 0; p < n; ++p) {
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      const PetscInt s = c.solid_of[mat[p]];
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) {
+        PetscScalar *node = out + index(i, j, k) * dof + s * stride;
+        node[0] += N * m[p];
+        node[1] += N * m[p] * T[p];
+        for (int a = 0; a < DIM; ++a) node[2 + a] += N * m[p] * v[DIM * p + a];
+      });
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
+// Nodal values -> particles: ambient pressure (p_n - p_ref) and the temperature increment.
+struct ParticleKernel {
+  Simulation        &sim;
+  const Coupling    &c;
+  const PetscScalar *inc;
+  bool               pressure; // else temperature
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const LocalNodeIndex index(g);
+    const PetscInt       dof = 2 + DIM;
+    PetscInt             n;
+    const PetscReal     *x, *hw, *F;
+    PetscReal           *out;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(pressure ? field::ambient_pressure : field::temperature, &out));
+    Stencil<DIM, S> st;
+    const PetscInt  q = pressure ? 0 : 1 + DIM;
+    for (PetscInt p = 0; p < n; ++p) {
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      PetscReal value = 0;
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { value += N * inc[index(i, j, k) * dof + q]; });
+      if (pressure) out[p] = value - c.p_ref;
+      else out[p] += value;
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
+// Calls f(node index triple, weight) for the 2^dim corner nodes of cell (i, j, k).
+template <class Fn>
+inline void ForEachCorner(const IceSolver &ice, PetscInt i, PetscInt j, PetscInt k, Fn &&f)
+{
+  for (PetscInt c = 0; c < (ice.dim == 3 ? 8 : 4); ++c) {
+    const PetscInt node[3] = {i + (c & 1), j + ((c >> 1) & 1), ice.dim == 3 ? k + ((c >> 2) & 1) : 0};
+    f(node, NodeWeight(ice, node));
+  }
+}
+} // namespace
+
+PetscErrorCode CouplingProjectSolids(Simulation &sim)
+{
+  Coupling    &c   = *sim.coupling;
+  IceSolver   &ice = *sim.ice;
+  PetscScalar *nodes, *a;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(VecZeroEntries(c.mass_local));
+  PetscCall(VecGetArray(c.mass_local, &nodes));
+  ProjectKernel kernel{sim, c, nodes};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArray(c.mass_local, &nodes));
+  PetscCall(VecZeroEntries(c.mass_global));
+  PetscCall(DMLocalToGlobal(c.da_mass, c.mass_local, ADD_VALUES, c.mass_global));
+  PetscCall(DMGlobalToLocal(c.da_mass, c.mass_global, INSERT_VALUES, c.mass_local));
+  // nodes -> cells
+  const LocalNodeIndex index(sim.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, S = ice.stride;
+  const PetscReal      V   = ice.CellVolume();
+  PetscCall(VecGetArray(c.mass_local, &nodes));
+  PetscCall(IceGetLocalArray(ice, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        PetscScalar *cell = a + ice.LocalIndex(i, j, k) * S;
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscInt m = c.first + s;
+          PetscReal      M = 0, MT = 0, P[3] = {0, 0, 0};
+          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
+            const PetscScalar *nd = nodes + index(node[0], node[1], node[2]) * c.mass_stride + s * stride;
+            M += w * nd[0];
+            MT += w * nd[1];
+            for (PetscInt d = 0; d < dim; ++d) P[d] += w * nd[2 + d];
+          });
+          const PetscReal rho0   = ice.materials[m].eos->Density(c.p_ref, 300);
+          const PetscReal M_tiny = ice.rho_tiny * rho0 * V;
+          const PetscReal T_old  = cell[ice.Offset(m, icef::temp)];
+          // an (almost) empty cell keeps its last temperature (ice.md 2.1)
+          const PetscReal share = M / (M + M_tiny);
+          cell[ice.Offset(m, icef::rho)]  = (M + M_tiny) / V;
+          cell[ice.Offset(m, icef::temp)] = M > 0 ? share * (MT / M) + (1 - share) * T_old : T_old;
+          for (PetscInt d = 0; d < 3; ++d) cell[ice.Offset(m, icef::vel + d)] = d < dim ? P[d] / (M + M_tiny) : 0;
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(VecRestoreArray(c.mass_local, &nodes));
+  PetscCall(IceUpdateGhosts(ice));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingPressureToParticles(Simulation &sim)
+{
+  Coupling          &c   = *sim.coupling;
+  IceSolver         &ice = *sim.ice;
+  const PetscScalar *a;
+  PetscScalar       *inc;
+  PetscInt           xs[3], xm[3];
+  const PetscInt     dim = ice.dim, dof = 2 + dim;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  // nodal pressure: the mean of the cells around each owned node (ghost cells carry the boundary
+  // conditions), then to the ghost nodes
+  PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  PetscCall(VecGetArray(c.inc_global, &inc));
+  PetscInt l = 0;
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
+      for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
+        PetscReal p = 0;
+        for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
+          const PetscInt ci = i - 1 + (cc & 1), cj = j - 1 + ((cc >> 1) & 1), ck = dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0;
+          p += a[ice.LocalIndex(ci, cj, ck) * ice.stride + ice.CellOffset(icef::press)];
+        }
+        inc[l * dof] = p / (dim == 3 ? 8 : 4);
+      }
+  PetscCall(VecRestoreArray(c.inc_global, &inc));
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
+  PetscCall(VecGetArrayRead(c.inc_local, &a));
+  ParticleKernel kernel{sim, c, a, true};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArrayRead(c.inc_local, &a));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingSolidVelocity(Simulation &sim)
+{
+  Coupling          &c   = *sim.coupling;
+  IceSolver         &ice = *sim.ice;
+  const PetscScalar *nodes, *vel;
+  PetscScalar       *a;
+  const LocalNodeIndex index(sim.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = 2 * dim;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(c.mass_local, &nodes));
+  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(IceGetLocalArray(ice, &a));
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        PetscScalar *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscInt m = c.first + s;
+          PetscReal      P[3] = {0, 0, 0};
+          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
+            const PetscInt n = index(node[0], node[1], node[2]);
+            for (PetscInt d = 0; d < dim; ++d) P[d] += w * nodes[n * c.mass_stride + s * stride] * vel[n * vdof + dim + d];
+          });
+          for (PetscInt d = 0; d < dim; ++d) cell[ice.Offset(m, icef::vel + d)] = P[d] / (cell[ice.Offset(m, icef::rho)] * V);
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
+  PetscCall(IceUpdateGhosts(ice)); // the increments of ghost cells are taken against these
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
+{
+  Coupling          &c   = *sim.coupling;
+  IceSolver         &ice = *sim.ice;
+  Grid              &g   = sim.grid;
+  const PetscScalar *a;
+  PetscScalar       *inc, *vel;
+  PetscInt           xs[3], xm[3];
+  const PetscInt     dim = ice.dim, dof = 2 + dim;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  // per owned node: the solid-mass weighted mean of the increments of the cells around it
+  PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  PetscCall(VecGetArray(c.inc_global, &inc));
+  PetscCall(VecGetArray(g.velocity, &vel));
+  const PetscReal V = ice.CellVolume();
+  PetscInt        l = 0;
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
+      for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
+        PetscReal weight = 0, dv[3] = {0, 0, 0}, dT = 0;
+        for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
+          const PetscInt ci = i - 1 + (cc & 1), cj = j - 1 + ((cc >> 1) & 1), ck = dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0;
+          const PetscInt cell[3] = {ci, cj, ck};
+          bool           inside  = true;
+          for (PetscInt d = 0; d < dim; ++d) inside = inside && cell[d] >= 0 && cell[d] < ice.cells[d];
+          if (!inside) continue;
+          const PetscScalar *cl = a + ice.LocalIndex(ci, cj, ck) * ice.stride;
+          for (PetscInt s = 0; s < c.nsolid; ++s) {
+            const PetscInt  m = c.first + s;
+            const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
+            weight += M;
+            for (PetscInt d = 0; d < dim; ++d) dv[d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
+            dT += M * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
+          }
+        }
+        PetscScalar *ni = inc + l * dof;
+        const PetscInt node[3] = {i, j, k};
+        for (PetscInt d = 0; d < dim; ++d) {
+          PetscReal value = weight > 0 ? dv[d] / weight : 0;
+          // the boundary conditions of the grid hold: no normal change on a symmetry face, none on a fixed one
+          for (int side = 0; side < 2; ++side) {
+            const bool on_face = side == 0 ? node[d] == 0 : node[d] == g.cells[d];
+            if (on_face && g.bc[d][side] == FaceBC::Symmetry) value = 0;
+          }
+          for (PetscInt e = 0; e < dim; ++e)
+            for (int side = 0; side < 2; ++side)
+              if ((side == 0 ? node[e] == 0 : node[e] == g.cells[e]) && g.bc[e][side] == FaceBC::Fixed) value = 0;
+          ni[1 + d] = value;
+          vel[l * 2 * dim + dim + d] += value; // v_new of the (only) velocity field
+        }
+        ni[1 + dim] = weight > 0 ? dT / weight : 0;
+      }
+  PetscCall(VecRestoreArray(g.velocity, &vel));
+  PetscCall(VecRestoreArray(c.inc_global, &inc));
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
+  PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingHeatToParticles(Simulation &sim)
+{
+  const PetscScalar *inc;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(sim.coupling->inc_local, &inc));
+  ParticleKernel kernel{sim, *sim.coupling, inc, false};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArrayRead(sim.coupling->inc_local, &inc));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingSetUp(Simulation &sim)
+{
+  Coupling  &c   = *sim.coupling;
+  IceSolver &ice = *sim.ice;
+  PetscFunctionBeginUser;
+  PetscCheck(sim.grid.num_velocity_fields == 1, sim.comm, PETSC_ERR_SUP, "A scene with gas and particles supports one velocity field: -mpm_convert_failed and rigid bodies are not coupled to the gas yet");
+  PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
+  c.first       = ice.ngas;
+  c.mass_stride = c.nsolid * (2 + sim.grid.dim);
+  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.mass_stride, &c.da_mass));
+  PetscCall(DMCreateGlobalVector(c.da_mass, &c.mass_global));
+  PetscCall(DMCreateLocalVector(c.da_mass, &c.mass_local));
+  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 2 + sim.grid.dim, &c.da_inc));
+  PetscCall(DMCreateGlobalVector(c.da_inc, &c.inc_global));
+  PetscCall(DMCreateLocalVector(c.da_inc, &c.inc_local));
+  // the first projection, then the gases give up the volume the solids take at the cell pressure
+  PetscCall(CouplingProjectSolids(sim));
+  std::vector<PetscReal> fraction((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2], 0);
+  PetscScalar           *a;
+  PetscCall(IceGetLocalArray(ice, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt idx  = ice.LocalIndex(i, j, k);
+        PetscScalar   *cell = a + idx * ice.stride;
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscInt m = c.first + s;
+          fraction[idx] += cell[ice.Offset(m, icef::rho)] / ice.materials[m].eos->Density(cell[ice.CellOffset(icef::press)], cell[ice.Offset(m, icef::temp)]);
+        }
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(IceMakeRoomForSolids(ice, fraction));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingDestroy(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  delete sim.coupling;
+  sim.coupling = nullptr;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

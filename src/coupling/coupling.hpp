@@ -1,0 +1,34 @@
+// MPM-ICE coupling (ice.md 1.2, 2): the only part of burst that knows both solvers.
+//
+// Each non-rigid MPM material is also a material of the gas cells: its mass, momentum and
+// temperature are projected from the particles (through the nodes) to the cells, where the
+// equilibration gives it a volume from its coupling equation of state at the cell pressure
+// (never particle mass over volume, ice.md 2.2). The gas pressure reaches the solid two ways,
+// as in the reference (ice.md 2.3): the cell momentum source -theta grad p and the cell exchange
+// change the solid's cell velocity, and that change goes back to the nodes; and the MPM internal
+// force uses sigma + (p - p_ref) I, which cancels the pressure gradient inside the solid where the
+// first path counts it, so that only the pressure on the solid's surface acts.
+#pragma once
+#include "../simulation.hpp"
+#include "../ice/ice.hpp"
+
+namespace burst {
+
+struct Coupling;
+
+// Before the gas solver exists: one solid material per non-rigid MPM material, with its coupling
+// equation of state (bulk-modulus form, the modified form in tension; ice.md 2.2).
+PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec> &solids);
+// After the particles and the gas exist: the projection objects, the first projection, and room
+// for the solids in the gas.
+PetscErrorCode CouplingSetUp(Simulation &sim);
+PetscErrorCode CouplingDestroy(Simulation &sim);
+
+// The coupled phases, in the order of src/step.cxx.
+PetscErrorCode CouplingProjectSolids(Simulation &sim);       // particles -> nodes -> cells (M, u, T)
+PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes -> particles
+PetscErrorCode CouplingSolidVelocity(Simulation &sim);       // nodal v* after the MPM update -> cells
+PetscErrorCode CouplingIncrementsToNodes(Simulation &sim);   // pressure force + exchange -> nodes
+PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat -> particles
+
+} // namespace burst
