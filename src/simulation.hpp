@@ -200,6 +200,9 @@ PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what);
 PetscErrorCode UpdateStress(Simulation &sim);
 PetscErrorCode CheckParticleState(Simulation &sim, const char phase[]);
 PetscErrorCode MigrateParticles(Simulation &sim);
+// Removes the local particles flagged in `remove` (their mass and energy go to the diagnostics);
+// *removed is the global count.
+PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed);
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
 
 PetscErrorCode TakeStep(Simulation &sim);

@@ -126,6 +126,12 @@ struct IceSolver {
   // Work arrays for advection (gradients, fluxes) and the semi-implicit solve.
   std::vector<PetscReal> work_grad, work_adv, work_outflow, work_increment, work_advect;
 
+  // Mass conversion of this step (burning, ice.md 2.4), per local cell index and material: bulk
+  // density change (kg/m^3; negative for the reactant), momentum (kg/(m^2 s)) and energy (J/m^3)
+  // that come with it. Filled by the coupling after the equilibration; empty when nothing burns.
+  std::vector<PetscReal> mass_source, momentum_source, energy_source;
+  bool                   has_mass_source = false;
+
   // Step state
   PetscReal dt = 0, time = 0;
   PetscInt  step = 0;

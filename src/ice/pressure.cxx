@@ -28,7 +28,12 @@ PetscErrorCode IceUpdatePressure(IceSolver &ice)
           const PetscInt  idx  = ice.LocalIndex(i, j, k);
           PetscScalar    *c    = a + idx * S;
           const PetscReal p_eq = c[ice.CellOffset(icef::press_eq)];
-          const PetscReal p    = PetscMax(p_eq - ice.work_outflow[idx] / c[ice.CellOffset(icef::sum_kappa)], 1e-12); // ice.md 7.3
+          // the volume the materials carry out, and the volume that mass conversion creates
+          // (ice.md 1.5: dP_massX = sum_m dm_m v_m / (V sum kappa))
+          PetscReal created = 0;
+          if (ice.has_mass_source)
+            for (PetscInt m = 0; m < ice.nmat; ++m) created += ice.mass_source[idx * ice.nmat + m] * c[ice.Offset(m, icef::spvol)];
+          const PetscReal p = PetscMax(p_eq + (created - ice.work_outflow[idx]) / c[ice.CellOffset(icef::sum_kappa)], 1e-12); // ice.md 7.3
           c[ice.CellOffset(icef::press)]  = p;
           c[ice.CellOffset(icef::dp_dil)] = p - p_eq;
         }

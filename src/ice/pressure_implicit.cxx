@@ -90,7 +90,10 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
         for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i, ++row) {
           const PetscInt     idx = ice.LocalIndex(i, j, kk);
           const PetscScalar *c   = a + idx * S;
-          r[row]                 = -V * c[ice.CellOffset(icef::sum_kappa)] * (c[ice.CellOffset(icef::press)] - c[ice.CellOffset(icef::press_eq)]) - V * ice.work_outflow[idx];
+          PetscReal          created = 0; // volume made by mass conversion, relative to V
+          if (ice.has_mass_source)
+            for (PetscInt m = 0; m < ice.nmat; ++m) created += ice.mass_source[idx * ice.nmat + m] * c[ice.Offset(m, icef::spvol)];
+          r[row] = -V * c[ice.CellOffset(icef::sum_kappa)] * (c[ice.CellOffset(icef::press)] - c[ice.CellOffset(icef::press_eq)]) + V * (created - ice.work_outflow[idx]);
           local_max              = PetscMax(local_max, std::fabs(r[row]) / V);
         }
     PetscCall(VecRestoreArray(ice.rhs, &r));

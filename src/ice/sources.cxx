@@ -41,18 +41,29 @@ PetscErrorCode IceSources(IceSolver &ice)
           const IceMaterial &mat   = ice.materials[m];
           const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
           const PetscReal    theta = c[ice.Offset(m, icef::theta)];
-          c[ice.Offset(m, icef::rho_L)] = rho;
+          // mass conversion (burning, ice.md 2.4): the mass, its momentum and its energy
+          const PetscReal  dr  = ice.has_mass_source ? ice.mass_source[idx * n + m] : 0;
+          const PetscReal *dmv = ice.has_mass_source ? &ice.momentum_source[(idx * n + m) * 3] : nullptr;
+          const PetscReal  de  = ice.has_mass_source ? ice.energy_source[idx * n + m] : 0;
+          const PetscReal  rho_L = PetscMax(rho + dr, ice.rho_tiny / c[ice.Offset(m, icef::spvol)]);
+          c[ice.Offset(m, icef::rho_L)] = rho_L;
+          PetscReal u2 = 0, uL2 = 0, ke_in = 0;
           for (PetscInt d = 0; d < 3; ++d) {
             const PetscReal source = d < dim ? -ice.dt * theta * grad_p[d] + ice.dt * rho * ice.gravity[d] : 0;
-            c[ice.Offset(m, icef::vel_L + d)] = c[ice.Offset(m, icef::vel + d)] + source / rho;
+            const PetscReal u      = c[ice.Offset(m, icef::vel + d)];
+            const PetscReal uL     = (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
+            c[ice.Offset(m, icef::vel_L + d)] = uL;
+            u2 += u * u;
+            uL2 += uL * uL;
+            if (dmv && dr > 0) ke_in += 0.5 * dmv[d] * dmv[d] / dr;
           }
           PetscReal T_L;
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
           else if (ice.conservative_energy) {
-            // total energy from the work of the face pressures on the face volume fluxes, minus
-            // the kinetic energy the momentum source gave: conservative, so shocks move at the
-            // Rankine-Hugoniot speed
-            PetscReal work = 0, ke = 0;
+            // total energy from the work of the face pressures on the face volume fluxes, plus what
+            // the converted mass brings, minus the kinetic energy: conservative, so shocks move at
+            // the Rankine-Hugoniot speed
+            PetscReal work = 0;
             for (PetscInt d = 0; d < dim; ++d) {
               const PetscInt faces[2] = {idx, idx + ice.lstride[d]};
               for (int s = 0; s < 2; ++s) {
@@ -61,12 +72,12 @@ PetscErrorCode IceSources(IceSolver &ice)
                 const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
                 work -= (s ? 1 : -1) * ice.dt / ice.h[d] * face_pressure(L, R) * theta_f * u;
               }
-              ke += 0.5 * (c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)] - c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)]);
             }
-            T_L = c[ice.Offset(m, icef::temp)] + (work / rho - ke) / mat.eos->cv;
+            const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
+            T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
           } else {
             const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-            T_L                  = c[ice.Offset(m, icef::temp)] + work / (rho * mat.eos->cv);
+            T_L                  = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + work + de) / (rho_L * mat.eos->cv);
           }
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;

@@ -140,6 +140,42 @@ static PetscErrorCode RemoveOutsideParticles(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed)
+{
+  PetscInt   n, dim = sim.grid.dim;
+  PetscReal *mass, *v, *energy;
+  PetscInt64 local = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  std::vector<PetscInt> survivors;
+  {
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(field::mass, &mass));
+    PetscCall(fields.Get(field::velocity, &v));
+    PetscCall(fields.Get(field::internal_energy, &energy));
+    for (PetscInt p = 0; p < n; ++p) {
+      if (!remove[p]) {
+        survivors.push_back(p);
+        continue;
+      }
+      PetscReal v2 = 0;
+      for (PetscInt d = 0; d < dim; ++d) v2 += v[p * dim + d] * v[p * dim + d];
+      sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
+      sim.diag.removed_mass += mass[p];
+      sim.diag.removed_particles++;
+      ++local;
+    }
+    PetscCall(fields.RestoreAll());
+  }
+  const PetscInt keep = (PetscInt)survivors.size();
+  for (PetscInt k = 0; k < keep; ++k)
+    if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
+  if (keep != n) PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
+  PetscCallMPI(MPI_Allreduce(&local, removed, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  sim.total_particles -= *removed;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MigrateParticles(Simulation &sim)
 {
   PetscInt   outside = 0, n;
