@@ -50,6 +50,7 @@ static PetscErrorCode MPMStep(Simulation &sim)
     break;
   }
   PetscCall(MigrateParticles(sim));
+  PetscCall(ConductHeat(sim)); // after migration: the stencil needs every particle on its owner rank
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
