@@ -55,6 +55,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(FragmentsSetUp(sim));
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
+  PetscCall(HeatConductionSetUp(sim));
   PetscCall(CreateAnalyticSolution(sim));
   PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, "failed"), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
   // 3. The gas, on cells of the same grid (null without -ice_materials)

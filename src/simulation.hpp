@@ -67,6 +67,9 @@ struct Coupling;
 // A geometry object from which particles are seeded (src/seed.cxx).
 struct Geometry;
 
+// Heat conduction in the solids (src/mpm/heat_conduction.cxx), null unless -mpm_heat_conduction.
+struct HeatConduction;
+
 struct Grid {
   PetscInt  dim = 2;
   PetscReal lower[3] = {0, 0, 0}, upper[3] = {1, 1, 1};
@@ -155,6 +158,7 @@ struct Simulation {
   std::unique_ptr<AnalyticSolution>       analytic;
   IceSolver                              *ice = nullptr;      // owned by the driver (burst.cxx)
   Coupling                               *coupling = nullptr; // owned by the driver
+  std::shared_ptr<HeatConduction>         heat;               // null unless -mpm_heat_conduction
   bool HasParticles() const { return swarm != nullptr; }
 
   // State
@@ -206,6 +210,8 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
 
 PetscErrorCode TakeStep(Simulation &sim);
+PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
+PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
 
 // Fragments (src/fragments.cxx)
 PetscErrorCode FragmentsSetUp(Simulation &sim);

@@ -57,6 +57,7 @@ static PetscErrorCode MPMStep(Simulation &sim)
     break;
   }
   PetscCall(MigrateParticles(sim));
+  PetscCall(ConductHeat(sim)); // after migration: the stencil needs every particle on its owner rank
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -103,6 +104,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(CouplingHeatToParticles(sim));
   PetscCall(UpdateStress(sim));
   PetscCall(MigrateParticles(sim));
+  PetscCall(ConductHeat(sim));
   PetscCall(IceAdvect(ice));
   ice.time += sim.dt;
   ice.step += 1;

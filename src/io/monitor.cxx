@@ -211,6 +211,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
   const PetscInt bytes = sim.swarm_bytes;
   PetscReal rms = 0, max = 0;
   if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
+  PetscReal Trms = 0, Tmax = 0;
+  if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(AnalyticTemperatureError(sim, &Trms, &Tmax));
   IceTotals gas;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
@@ -249,6 +251,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << "  \"displacement_error_rms\": " << rms << ",\n";
     s << "  \"displacement_error_max\": " << max << ",\n";
     s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.diag.max_error_displacement, rms) << ",\n";
+    if (sim.analytic->HasTemperature()) s << "  \"temperature_error_rms\": " << Trms << ",\n  \"temperature_error_max\": " << Tmax << ",\n";
   }
   s << "  \"failure_energy\": " << r.failure_energy << ",\n";
   s << "  \"plastic_work\": " << r.plastic_work << ",\n";
@@ -282,6 +285,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)r.balance_error, (double)(rate / sim.size), path.c_str()));
   if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
+  if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: temperature error rms %.4e K, max %.4e K\n", sim.analytic->Name(), (double)Trms, (double)Tmax));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -60,20 +60,43 @@ public:
   }
 };
 
-static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned"};
+// A decaying mode of the heat equation in a bar at rest: T0 + dT f(pi X/L) exp(-alpha pi^2 t/L^2),
+// f = sin (ends held at T0) or cos (insulated ends).
+class HeatMode final : public AnalyticSolution {
+public:
+  bool      cosine = false;
+  PetscReal length = 1, amplitude = 10, T0 = 300, alpha = 0;
+  const char *Name() const override { return cosine ? "heat_cosine" : "heat_sine"; }
+  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override { (void)X; (void)t; for (int d = 0; d < 3; ++d) u[d] = 0; }
+  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override { (void)X; (void)t; for (int d = 0; d < 3; ++d) v[d] = 0; }
+  void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
+  {
+    (void)X; (void)t;
+    for (int a = 0; a < 9; ++a) F[a] = (a % 4 == 0) ? 1.0 : 0.0;
+  }
+  bool      HasTemperature() const override { return true; }
+  PetscReal Temperature(const PetscReal X[], PetscReal t) const override
+  {
+    const PetscReal kx = PETSC_PI * X[0] / length, decay = std::exp(-alpha * PETSC_PI * PETSC_PI * t / (length * length));
+    return T0 + amplitude * (cosine ? std::cos(kx) : std::sin(kx)) * decay;
+  }
+};
+
+static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned", "heat_sine", "heat_cosine"};
 
 PetscErrorCode CreateAnalyticSolution(Simulation &sim)
 {
   int       type = 0;
   char      material[256] = "";
   PetscBool has_material = PETSC_FALSE;
-  PetscReal amplitude = -1, length = -1;
+  PetscReal amplitude = -1, length = -1, T0 = 300;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Analytic solutions for verification", "Analytic");
-  PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 3, &type, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 5, &type, nullptr));
   PetscCall(PetscOptionsString("-analytic_material", "Material whose parameters the analytic solution uses (default: the first of -materials)", "", material, material, sizeof(material), &has_material));
-  PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05)", "", amplitude, &amplitude, nullptr));
-  PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25", "", length, &length, nullptr));
+  PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05); heat_sine/heat_cosine: temperature amplitude dT (K, default 10)", "", amplitude, &amplitude, nullptr));
+  PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25; heat_sine/heat_cosine: bar length L (m, the bar is [0, L] in x), default 1", "", length, &length, nullptr));
+  PetscCall(PetscOptionsReal("-analytic_temperature", "heat_sine/heat_cosine: base temperature T0 (K), > 0 (heat_sine: give the same to -mpm_heat_bc_xmin/xmax)", "", T0, &T0, nullptr));
   PetscOptionsEnd();
   if (type == 0 || sim.materials.empty()) PetscFunctionReturn(PETSC_SUCCESS);
 
@@ -89,7 +112,23 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
   PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-youngs_modulus", &E, &setE));
   PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-poisson_ratio", &nu, nullptr));
   PetscCheck(setE, sim.comm, PETSC_ERR_USER_INPUT, "-analytic %s needs an elastic material with -%s_youngs_modulus", AnalyticNames[type], m->Name());
-  if (type == 1) {
+  if (type == 3 || type == 4) {
+    PetscReal k = -1, c = -1;
+    PetscBool setk = PETSC_FALSE, setc = PETSC_FALSE, on = PETSC_FALSE;
+    PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-mpm_heat_conduction", &on, nullptr));
+    PetscCheck(on, sim.comm, PETSC_ERR_USER_INPUT, "-analytic %s needs -mpm_heat_conduction true", AnalyticNames[type]);
+    PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-thermal_conductivity", &k, &setk));
+    PetscCall(PetscOptionsGetReal(nullptr, (m->name_ + "_").c_str(), "-heat_capacity", &c, &setc));
+    PetscCheck(setk && setc && k >= 0 && c > 0, sim.comm, PETSC_ERR_USER_INPUT, "-analytic %s needs -%s_thermal_conductivity >= 0 and -%s_heat_capacity > 0", AnalyticNames[type], m->Name(), m->Name());
+    PetscCall(CheckRange(sim.comm, "-analytic_temperature", T0, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    auto heat       = std::make_unique<HeatMode>();
+    heat->cosine    = type == 4;
+    heat->amplitude = amplitude > 0 ? amplitude : 10;
+    heat->length    = length > 0 ? length : 1;
+    heat->T0        = T0;
+    heat->alpha     = k / (m->Density() * c);
+    sim.analytic    = std::move(heat);
+  } else if (type == 1) {
     auto bar         = std::make_unique<BarMode>();
     bar->amplitude   = amplitude > 0 ? amplitude : 0.1;
     bar->length      = length > 0 ? length : 25;
@@ -113,9 +152,10 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
 PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
 {
   PetscInt   n, dim = sim.grid.dim;
-  PetscReal *x, *X0, *v, *F, *vol, *vol0;
+  PetscReal *x, *X0, *v, *F, *vol, *vol0, *T;
   PetscFunctionBeginUser;
   if (!sim.analytic) PetscFunctionReturn(PETSC_SUCCESS);
+  const bool temperature = sim.analytic->HasTemperature();
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
@@ -124,6 +164,7 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
   PetscCall(fields.Get(field::F, &F));
   PetscCall(fields.Get(field::volume, &vol));
   PetscCall(fields.Get(field::volume0, &vol0));
+  PetscCall(fields.Get(field::temperature, &T));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal X[3] = {0, 0, 0}, u[3], vel[3];
     for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
@@ -137,6 +178,7 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
     const PetscReal *f = F + 9 * p;
     const PetscReal  J = f[0] * (f[4] * f[8] - f[5] * f[7]) - f[1] * (f[3] * f[8] - f[5] * f[6]) + f[2] * (f[3] * f[7] - f[4] * f[6]);
     vol[p]             = vol0[p] * J;
+    if (temperature) T[p] = sim.analytic->Temperature(X, 0);
   }
   PetscCall(fields.RestoreAll());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -164,6 +206,33 @@ PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscR
     local[0] += mass[p] * e2;
     local[1] += mass[p];
     local[2] = PetscMax(local[2], std::sqrt(e2));
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&local[2], &global[2], 1, MPIU_REAL, MPI_MAX, sim.comm));
+  *rms = std::sqrt(global[0] / global[1]);
+  *max = global[2];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode AnalyticTemperatureError(Simulation &sim, PetscReal *rms, PetscReal *max)
+{
+  PetscInt   n, dim = sim.grid.dim;
+  PetscReal *X0, *mass, *T;
+  PetscReal  local[3] = {0, 0, 0}, global[3]; // sum m e^2, sum m, max |e|
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::position0, &X0));
+  PetscCall(fields.Get(field::mass, &mass));
+  PetscCall(fields.Get(field::temperature, &T));
+  for (PetscInt p = 0; p < n; ++p) {
+    PetscReal X[3] = {0, 0, 0};
+    for (PetscInt d = 0; d < dim; ++d) X[d] = X0[p * dim + d];
+    const PetscReal e = T[p] - sim.analytic->Temperature(X, sim.time);
+    local[0] += mass[p] * e * e;
+    local[1] += mass[p];
+    local[2] = PetscMax(local[2], std::fabs(e));
   }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
