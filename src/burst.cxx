@@ -16,6 +16,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "util.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
+#include "../models/burn/burn.hpp"
 
 using namespace burst;
 
@@ -175,6 +176,7 @@ int main(int argc, char **argv)
   }
   PetscCall(MaterialRegistryDestroy());
   PetscCall(GasEOSRegistryDestroy());
+  PetscCall(BurnModelRegistryDestroy());
   PetscCall(PetscFinalize());
   return 0;
 }

@@ -13,10 +13,11 @@
 //   specific volume -> advection, conserved to primitive
 //
 // Solids and gas together (ice.md 1.2, the full table; USL or MUSL for the particles):
-//   P2G(m, mv) -> solids to cells -> equilibration -> face velocities -> pressure -> pressure to the
+//   P2G(m, mv) -> solids to cells -> equilibration -> burning (gas sources, particle masses) ->
+//   face velocities -> pressure -> pressure to the
 //   particles -> P2G(f, with sigma + (p - p_ref) I) -> grid update -> the solids' nodal velocity to
 //   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> G2P ->
-//   exchange heat to the particles -> stress -> migrate -> gas advection
+//   exchange heat to the particles -> stress -> migrate -> heat conduction -> gas advection
 //
 // Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
 // src/coupling/.
@@ -86,6 +87,8 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
   PetscCall(CouplingProjectSolids(sim));
   PetscCall(IceEquilibrate(ice));
+  PetscCall(CouplingBurn(sim));
+  PetscCall(CouplingBurnParticles(sim));
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
   PetscCall(CouplingPressureToParticles(sim));

@@ -5,7 +5,7 @@
 // and every node's mass reaches the cells in full. Cell -> node: a node takes the solid-mass
 // weighted mean of the increments of the cells around it, so a cell that holds only the tiny
 // trace mass of a solid (which the exchange drags to the gas velocity) does not move the solid.
-#include "coupling.hpp"
+#include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
 #include "../util.hpp"
@@ -36,26 +36,6 @@ public:
     return p > 0 ? rho0 * std::pow(p / p_ref, p_ref / K) : -1;
   }
   PetscReal Temperature(PetscReal, PetscReal) const override { return T_ref; }
-};
-
-struct Coupling {
-  PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
-  std::vector<PetscInt> solid_of;              // MPM material id -> solid index
-  PetscReal             p_ref = 101325;
-  DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
-  Vec                   mass_global = nullptr, mass_local = nullptr;
-  DM                    da_inc = nullptr;      // nodes: [p, dv (dim), dT]
-  Vec                   inc_global = nullptr, inc_local = nullptr;
-  PetscInt              mass_stride = 0;
-  ~Coupling()
-  {
-    VecDestroy(&mass_global);
-    VecDestroy(&mass_local);
-    VecDestroy(&inc_global);
-    VecDestroy(&inc_local);
-    DMDestroy(&da_mass);
-    DMDestroy(&da_inc);
-  }
 };
 
 PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec> &solids)
@@ -93,14 +73,6 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
 }
 
 namespace {
-// Weight of node (i, j, k) for a cell it bounds: 1/2 per direction, 1 on a domain face.
-inline PetscReal NodeWeight(const IceSolver &ice, const PetscInt node[3])
-{
-  PetscReal w = 1;
-  for (PetscInt d = 0; d < ice.dim; ++d) w *= (node[d] == 0 || node[d] == ice.cells[d]) ? 1.0 : 0.5;
-  return w;
-}
-
 // Particles -> nodes, per solid material: mass, mass T, momentum.
 struct ProjectKernel {
   Simulation  &sim;
@@ -177,15 +149,6 @@ struct ParticleKernel {
   }
 };
 
-// Calls f(node index triple, weight) for the 2^dim corner nodes of cell (i, j, k).
-template <class Fn>
-inline void ForEachCorner(const IceSolver &ice, PetscInt i, PetscInt j, PetscInt k, Fn &&f)
-{
-  for (PetscInt c = 0; c < (ice.dim == 3 ? 8 : 4); ++c) {
-    const PetscInt node[3] = {i + (c & 1), j + ((c >> 1) & 1), ice.dim == 3 ? k + ((c >> 2) & 1) : 0};
-    f(node, NodeWeight(ice, node));
-  }
-}
 } // namespace
 
 PetscErrorCode CouplingProjectSolids(Simulation &sim)
@@ -420,6 +383,7 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(IceMakeRoomForSolids(ice, fraction));
+  PetscCall(CouplingBurnSetUp(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

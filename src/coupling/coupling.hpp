@@ -30,5 +30,11 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes 
 PetscErrorCode CouplingSolidVelocity(Simulation &sim);       // nodal v* after the MPM update -> cells
 PetscErrorCode CouplingIncrementsToNodes(Simulation &sim);   // pressure force + exchange -> nodes
 PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat -> particles
+// Burning (burn.cxx): the reactants' models and products; the mass, momentum and energy that burn
+// in each cell (after the equilibration); the particles' share of it (right after, at the positions
+// the cells were projected from, so that the particles lose exactly what the gas gains).
+PetscErrorCode CouplingBurnSetUp(Simulation &sim);
+PetscErrorCode CouplingBurn(Simulation &sim);
+PetscErrorCode CouplingBurnParticles(Simulation &sim);
 
 } // namespace burst

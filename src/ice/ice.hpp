@@ -137,6 +137,7 @@ struct IceSolver {
   PetscInt  step = 0;
   PetscInt  ksp_iterations = 0, outer_iterations = 0; // of the last step
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
+  PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy (this rank)
   IceTotals initial;
 
   PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;

@@ -4,10 +4,15 @@
 // Face pressure from continuity of acceleration: p_f = (p_R rho_L + p_L rho_R)/(rho_L + rho_R),
 // rho the sum of the bulk densities. Per material, per unit volume:
 //   momentum  -dt theta_m grad p_f + dt rho_m g
-//   energy    theta_m kappa_m (T dP/dT + dp_dil) dp_dil: the work of compression, c_v dT = -T
-//             (dP/dT)_rho dv, evaluated at the end-of-step pressure; for an ideal gas this is
-//             Uintah's p^{n+1} theta kappa dp_dil.
-// The Lagrangian values are the state plus these sources (no mass source without burning).
+//   energy    (-ice_conservative_energy, the default) the work of the face pressures on the face
+//             volume fluxes, minus the kinetic energy the momentum source gives: total energy is
+//             conserved; where that would leave a negative temperature (a step that gives a gas
+//             more kinetic energy than it holds, counted in ice.energy_fallbacks), and with
+//             -ice_conservative_energy 0, theta_m kappa_m (T dP/dT + dp_dil) dp_dil, the work of
+//             compression c_v dT = -T (dP/dT)_rho dv at the end-of-step pressure (for an ideal
+//             gas Uintah's p^{n+1} theta kappa dp_dil, its only form)
+//   burning   the mass, momentum and energy of the converted solid (ice.md 2.4)
+// The Lagrangian values are the state plus these sources.
 #include "ice.hpp"
 #include <cmath>
 
@@ -75,6 +80,13 @@ PetscErrorCode IceSources(IceSolver &ice)
             }
             const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
             T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
+            if (!(T_L > 0)) {
+              // the explicit pressure can accelerate a gas by more than its internal energy in one
+              // step (a burning cell's created volume beside it): keep the -p dV form here and count it
+              const PetscReal pdv = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
+              T_L                 = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * mat.eos->cv);
+              ++ice.energy_fallbacks;
+            }
           } else {
             const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
             T_L                  = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + work + de) / (rho_L * mat.eos->cv);

@@ -1,0 +1,259 @@
+// Burning: a reactant solid turns into a product gas (ice.md 2.4, 3).
+//
+// A solid material burns when it names a model, -<mat>_burn_type simple_burn|steady_burn (models/
+// burn/), and its product, -<mat>_burn_product <gas>. Per cell, after the equilibration, the model
+// gives the mass dm that burns in this step from the cell pressure, the solid's temperature and the
+// burning surface (from the gradient of the solid's nodal mass, ice.md 3.1). The gas gains dm, its
+// momentum dm u_s and the energy dm (c_v,s T_s + Q); the solid loses the mass, its momentum and its
+// energy; the pressure equation sees the volume that the conversion creates. On the particle side
+// each reactant particle loses the burnt fraction of its cell's solid (through the nodes), and a
+// particle below -coupling_burnout_fraction of its seeded mass is removed and counted.
+#include "coupling_impl.hpp"
+#include "../mpm/grid_index.hpp"
+#include "../mpm/swarm_access.hpp"
+#include "../util.hpp"
+#include <cmath>
+
+namespace burst {
+
+PetscErrorCode CouplingBurnSetUp(Simulation &sim)
+{
+  Coupling  &c   = *sim.coupling;
+  IceSolver &ice = *sim.ice;
+  PetscFunctionBeginUser;
+  c.burn.resize(c.nsolid);
+  c.product.assign(c.nsolid, -1);
+  c.seed_mass.assign(c.nsolid, 0);
+  PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
+  PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", c.burnout, &c.burnout, nullptr));
+  PetscCall(CheckRange(sim.comm, "-coupling_burnout_fraction", c.burnout, 0, 1, PETSC_TRUE));
+  PetscOptionsEnd();
+  bool any = false;
+  for (size_t m = 0; m < sim.materials.size(); ++m) {
+    const PetscInt s = c.solid_of[m];
+    if (s < 0) continue;
+    const Material &mat = *sim.materials[m];
+    BurnModel      *model;
+    PetscCall(BurnModelCreate(sim.comm, mat.Name(), &model));
+    c.burn[s].reset(model);
+    if (model->name_ == "none") continue;
+    char              product[256] = "";
+    PetscBool         set          = PETSC_FALSE;
+    const std::string pre          = std::string(mat.Name()) + "_";
+    PetscOptionsBegin(sim.comm, pre.c_str(), "Burning", "Coupling");
+    PetscCall(PetscOptionsString("-burn_product", "The gas material (one of -ice_materials) that the burnt solid becomes", "", product, product, sizeof(product), &set));
+    PetscOptionsEnd();
+    std::string names;
+    for (PetscInt g = 0; g < ice.ngas; ++g) {
+      names += (g ? ", " : "") + ice.materials[g].name;
+      if (ice.materials[g].name == product) c.product[s] = g;
+    }
+    PetscCheck(c.product[s] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Material %s burns (-%sburn_type %s): -%sburn_product must name its product gas; valid choices (-ice_materials): %s", mat.Name(), pre.c_str(), model->name_.c_str(), pre.c_str(), names.c_str());
+    any = true;
+  }
+  if (any) {
+    // the seeded particle masses (burnt-out threshold)
+    PetscInt         n;
+    const PetscReal *mass;
+    const PetscInt  *material;
+    std::vector<PetscReal> local(c.nsolid, 0);
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(field::mass, &mass));
+    PetscCall(fields.Get(field::material, &material));
+    for (PetscInt p = 0; p < n; ++p) local[c.solid_of[material[p]]] = PetscMax(local[c.solid_of[material[p]]], mass[p]);
+    PetscCall(fields.RestoreAll());
+    PetscCallMPI(MPI_Allreduce(local.data(), c.seed_mass.data(), (int)c.nsolid, MPIU_REAL, MPI_MAX, sim.comm));
+    const size_t nlocal = (size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
+    ice.mass_source.assign(nlocal * ice.nmat, 0);
+    ice.momentum_source.assign(nlocal * ice.nmat * 3, 0);
+    ice.energy_source.assign(nlocal * ice.nmat, 0);
+    c.burnt_fraction.assign(nlocal * c.nsolid, 0);
+    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nsolid, &c.da_phi));
+    PetscCall(DMCreateGlobalVector(c.da_phi, &c.phi_global));
+    PetscCall(DMCreateLocalVector(c.da_phi, &c.phi_local));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode CouplingBurn(Simulation &sim)
+{
+  Coupling          &c   = *sim.coupling;
+  IceSolver         &ice = *sim.ice;
+  const PetscScalar *nodes, *a;
+  PetscFunctionBeginUser;
+  ice.has_mass_source = !c.burnt_fraction.empty();
+  if (!ice.has_mass_source) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  std::fill(ice.mass_source.begin(), ice.mass_source.end(), 0);
+  std::fill(ice.momentum_source.begin(), ice.momentum_source.end(), 0);
+  std::fill(ice.energy_source.begin(), ice.energy_source.end(), 0);
+  std::fill(c.burnt_fraction.begin(), c.burnt_fraction.end(), 0);
+  const LocalNodeIndex index(sim.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
+  const PetscReal      V   = ice.CellVolume();
+  PetscCall(VecGetArrayRead(c.mass_local, &nodes));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt     idx  = ice.LocalIndex(i, j, k);
+        const PetscScalar *cell = a + idx * ice.stride;
+        // the hottest material that fills at least a fifth of the cell (Simple Burn's ignition)
+        PetscReal T_hot = 0;
+        for (PetscInt m = 0; m < n; ++m)
+          if (cell[ice.Offset(m, icef::theta)] > 0.2) T_hot = PetscMax(T_hot, cell[ice.Offset(m, icef::temp)]);
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          if (!c.burn[s] || c.product[s] < 0) continue;
+          const PetscInt  m = c.first + s, g = c.product[s];
+          const PetscReal M = cell[ice.Offset(m, icef::rho)] * V;
+          // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1)
+          PetscReal Mmax = 0, Mmin = PETSC_MAX_REAL, grad[3] = {0, 0, 0};
+          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal) {
+            const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride];
+            Mmax               = PetscMax(Mmax, mn);
+            Mmin               = PetscMin(Mmin, mn);
+            const PetscInt local[3] = {node[0] - i, node[1] - j, node[2] - k};
+            for (PetscInt d = 0; d < dim; ++d) grad[d] += (local[d] ? 1.0 : -1.0) * mn / (ice.h[d] * (dim == 3 ? 4 : 2));
+          });
+          BurnInput in;
+          in.p             = cell[ice.CellOffset(icef::press_eq)];
+          in.T_s           = cell[ice.Offset(m, icef::temp)];
+          in.T_g           = cell[ice.Offset(g, icef::temp)];
+          in.rho_s         = 1 / cell[ice.Offset(m, icef::spvol)];
+          in.area          = BurnSurfaceArea(dim, ice.h, grad, V);
+          in.dt            = ice.dt;
+          in.M_s           = M;
+          in.M_tiny        = ice.rho_tiny * in.rho_s * V;
+          in.mass_contrast = Mmax > 0 ? (Mmax - Mmin) / Mmax : 0;
+          in.T_hot         = T_hot;
+          in.n_particles   = M > 2 * in.M_tiny ? 1 : 0;
+          BurnOutput out;
+          PetscCall(c.burn[s]->Evaluate(in, &out));
+          if (!(out.dm > 0)) continue;
+          const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s;
+          ice.mass_source[idx * n + m] -= dr;
+          ice.mass_source[idx * n + g] += dr;
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscReal u = cell[ice.Offset(m, icef::vel + d)];
+            ice.momentum_source[(idx * n + m) * 3 + d] -= dr * u;
+            ice.momentum_source[(idx * n + g) * 3 + d] += dr * u;
+          }
+          ice.energy_source[idx * n + m] -= dr * cv * Ts;
+          ice.energy_source[idx * n + g] += dr * (cv * Ts + out.Q);
+          c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
+          c.burnt_mass += out.dm;
+        }
+      }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+namespace {
+// Nodal burnt fraction -> reactant particles: mass, volumes and energy scale with the mass left.
+struct BurnParticles {
+  Simulation        &sim;
+  const Coupling    &c;
+  const PetscScalar *phi; // per node, per solid
+  std::vector<char> &remove;
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const LocalNodeIndex index(g);
+    PetscInt             n;
+    const PetscReal     *x, *hw, *F;
+    PetscReal           *mass, *vol, *vol0, *energy;
+    const PetscReal     *v;
+    const PetscInt      *material;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    remove.assign(n, 0);
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(field::mass, &mass));
+    PetscCall(fields.Get(field::volume, &vol));
+    PetscCall(fields.Get(field::volume0, &vol0));
+    PetscCall(fields.Get(field::internal_energy, &energy));
+    PetscCall(fields.Get(field::material, &material));
+    PetscCall(fields.Get(field::velocity, &v));
+    Stencil<DIM, S> st;
+    for (PetscInt p = 0; p < n; ++p) {
+      const PetscInt s = c.solid_of[material[p]];
+      if (s < 0 || !c.burn[s] || c.product[s] < 0) continue;
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      PetscReal f = 0;
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { f += N * phi[index(i, j, k) * c.nsolid + s]; });
+      if (f <= 0) continue;
+      const PetscReal keep = PetscMax(1 - f, 0.0);
+      PetscReal       v2   = 0;
+      for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
+      // what leaves the particles goes to the gas: it leaves the solids' energy balance
+      sim.diag.removed_mass += (1 - keep) * mass[p];
+      sim.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
+      mass[p] *= keep;
+      vol[p] *= keep;
+      vol0[p] *= keep;
+      energy[p] *= keep;
+      if (mass[p] < c.burnout * c.seed_mass[s]) remove[p] = 1;
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+} // namespace
+
+PetscErrorCode CouplingBurnParticles(Simulation &sim)
+{
+  Coupling  &c   = *sim.coupling;
+  IceSolver &ice = *sim.ice;
+  PetscFunctionBeginUser;
+  if (c.burnt_fraction.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  // nodal fraction: phi_n = w_n sum of the burnt fractions of the node's cells, with the node ->
+  // cell weights of the projection. A particle then loses sum_c W_pc phi_c of its mass, W_pc its
+  // projection weight to cell c, and the particles of a cell lose exactly the mass that burnt
+  // there, phi_c M_c (the start-of-step positions, before G2P moves them).
+  DM          da = c.da_phi;
+  Vec         global = c.phi_global, local = c.phi_local;
+  PetscScalar *phi;
+  PetscInt    xs[3], xm[3];
+  const PetscInt dim = ice.dim;
+  PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArray(global, &phi));
+  PetscInt l = 0;
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
+      for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l)
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          PetscReal      sum     = 0;
+          const PetscInt node[3] = {i, j, k};
+          for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
+            const PetscInt cell[3] = {i - 1 + (cc & 1), j - 1 + ((cc >> 1) & 1), dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0};
+            bool           inside  = true;
+            for (PetscInt d = 0; d < dim; ++d) inside = inside && cell[d] >= 0 && cell[d] < ice.cells[d];
+            if (inside) sum += c.burnt_fraction[ice.LocalIndex(cell[0], cell[1], cell[2]) * c.nsolid + s];
+          }
+          phi[l * c.nsolid + s] = NodeWeight(ice, node) * sum;
+        }
+  PetscCall(VecRestoreArray(global, &phi));
+  PetscCall(DMGlobalToLocal(da, global, INSERT_VALUES, local));
+  std::vector<char>  remove;
+  const PetscScalar *phil;
+  PetscCall(VecGetArrayRead(local, &phil));
+  BurnParticles kernel{sim, c, phil, remove};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArrayRead(local, &phil));
+  PetscInt64 removed = 0;
+  PetscCall(RemoveParticles(sim, remove, &removed));
+  c.burnt_particles += removed;
+  if (removed) PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", sim.step, removed));
+  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst

@@ -1,0 +1,63 @@
+// The coupling's state, shared by the files of src/coupling/ (not part of its interface).
+#pragma once
+#include "coupling.hpp"
+#include "../../models/burn/burn.hpp"
+#include <memory>
+
+namespace burst {
+
+struct Coupling {
+  PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
+  std::vector<PetscInt> solid_of;              // MPM material id -> solid index
+  PetscReal             p_ref = 101325;
+  DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
+  Vec                   mass_global = nullptr, mass_local = nullptr;
+  DM                    da_inc = nullptr;      // nodes: [p, dv (dim), dT]
+  Vec                   inc_global = nullptr, inc_local = nullptr;
+  PetscInt              mass_stride = 0;
+  // Burning (burn.cxx), per solid: the model (null: inert), the product gas (ICE material index),
+  // the mass of a particle as seeded (burnt-out threshold); per local cell and solid, the fraction
+  // of the solid's cell mass burnt this step.
+  std::vector<std::unique_ptr<BurnModel>> burn;
+  std::vector<PetscInt>                   product;
+  std::vector<PetscReal>                  seed_mass;
+  std::vector<PetscReal>                  burnt_fraction;
+  PetscReal                               burnout = 1e-3; // a particle below this fraction of its seeded mass is removed
+  PetscReal                               burnt_mass = 0; // kg converted to gas so far (this rank)
+  PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
+  DM                                      da_phi = nullptr;    // nodes: burnt fraction per solid
+  Vec                                     phi_global = nullptr, phi_local = nullptr;
+  ~Coupling()
+  {
+    VecDestroy(&mass_global);
+    VecDestroy(&mass_local);
+    VecDestroy(&inc_global);
+    VecDestroy(&inc_local);
+    DMDestroy(&da_mass);
+    DMDestroy(&da_inc);
+    VecDestroy(&phi_global);
+    VecDestroy(&phi_local);
+    DMDestroy(&da_phi);
+  }
+};
+
+
+// Weight of node (i, j, k) for a cell it bounds: 1/2 per direction, 1 on a domain face.
+inline PetscReal NodeWeight(const IceSolver &ice, const PetscInt node[3])
+{
+  PetscReal w = 1;
+  for (PetscInt d = 0; d < ice.dim; ++d) w *= (node[d] == 0 || node[d] == ice.cells[d]) ? 1.0 : 0.5;
+  return w;
+}
+
+// Calls f(node index triple, weight) for the 2^dim corner nodes of cell (i, j, k).
+template <class Fn>
+inline void ForEachCorner(const IceSolver &ice, PetscInt i, PetscInt j, PetscInt k, Fn &&f)
+{
+  for (PetscInt c = 0; c < (ice.dim == 3 ? 8 : 4); ++c) {
+    const PetscInt node[3] = {i + (c & 1), j + ((c >> 1) & 1), ice.dim == 3 ? k + ((c >> 2) & 1) : 0};
+    f(node, NodeWeight(ice, node));
+  }
+}
+
+} // namespace burst
