@@ -70,6 +70,9 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
     ice.energy_source.assign(nlocal * ice.nmat, 0);
     c.burnt_fraction.assign(nlocal * c.nsolid, 0);
     PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nsolid, &c.da_phi));
+    PetscCall(DMDACreateCompatibleDMDA(ice.da, 5 * ice.nmat, &c.da_source));
+    PetscCall(DMCreateGlobalVector(c.da_source, &c.source_global));
+    PetscCall(DMCreateLocalVector(c.da_source, &c.source_local));
     PetscCall(DMCreateGlobalVector(c.da_phi, &c.phi_global));
     PetscCall(DMCreateLocalVector(c.da_phi, &c.phi_local));
   }
@@ -133,20 +136,55 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           if (!(out.dm > 0)) continue;
           const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s;
           ice.mass_source[idx * n + m] -= dr;
-          ice.mass_source[idx * n + g] += dr;
-          for (PetscInt d = 0; d < dim; ++d) {
-            const PetscReal u = cell[ice.Offset(m, icef::vel + d)];
-            ice.momentum_source[(idx * n + m) * 3 + d] -= dr * u;
-            ice.momentum_source[(idx * n + g) * 3 + d] += dr * u;
-          }
+          for (PetscInt d = 0; d < dim; ++d) ice.momentum_source[(idx * n + m) * 3 + d] -= dr * cell[ice.Offset(m, icef::vel + d)];
           ice.energy_source[idx * n + m] -= dr * cv * Ts;
-          ice.energy_source[idx * n + g] += dr * (cv * Ts + out.Q);
+          // The products leave the burning surface on its gas side: into the neighbours across the
+          // faces the outward normal -grad M points through, in proportion to |n_d|. (Released
+          // inside a cell that the reactant fills, the gas would have no room: its volume would
+          // compress the solid there, sum kappa being the solid's, by orders of magnitude.)
+          PetscReal norm = 0;
+          for (PetscInt d = 0; d < dim; ++d) norm += std::fabs(grad[d]);
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscReal share = norm > 0 ? std::fabs(grad[d]) / norm : (d == 0 ? 1.0 : 0.0);
+            if (share == 0) continue;
+            PetscInt        ijk[3] = {i, j, k};
+            ijk[d] += grad[d] > 0 ? -1 : 1;
+            if (ijk[d] < 0 || ijk[d] >= ice.cells[d]) ijk[d] = d == 0 ? i : d == 1 ? j : k; // at a domain face: here
+            const PetscInt target = ice.LocalIndex(ijk[0], ijk[1], ijk[2]);
+            ice.mass_source[target * n + g] += share * dr;
+            for (PetscInt e = 0; e < dim; ++e) ice.momentum_source[(target * n + g) * 3 + e] += share * dr * cell[ice.Offset(m, icef::vel + e)];
+            ice.energy_source[target * n + g] += share * dr * (cv * Ts + out.Q);
+          }
           c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
           c.burnt_mass += out.dm;
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
+  // sources put in ghost cells belong to the neighbour ranks: add them there, then refresh ghosts
+  {
+    PetscScalar   *src;
+    const PetscInt nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2], q = 5 * n;
+    PetscCall(VecGetArray(c.source_local, &src));
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt m = 0; m < n; ++m) {
+        src[idx * q + 5 * m] = ice.mass_source[idx * n + m];
+        for (PetscInt d = 0; d < 3; ++d) src[idx * q + 5 * m + 1 + d] = ice.momentum_source[(idx * n + m) * 3 + d];
+        src[idx * q + 5 * m + 4] = ice.energy_source[idx * n + m];
+      }
+    PetscCall(VecRestoreArray(c.source_local, &src));
+    PetscCall(VecZeroEntries(c.source_global));
+    PetscCall(DMLocalToGlobal(c.da_source, c.source_local, ADD_VALUES, c.source_global));
+    PetscCall(DMGlobalToLocal(c.da_source, c.source_global, INSERT_VALUES, c.source_local));
+    PetscCall(VecGetArray(c.source_local, &src));
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt m = 0; m < n; ++m) {
+        ice.mass_source[idx * n + m] = src[idx * q + 5 * m];
+        for (PetscInt d = 0; d < 3; ++d) ice.momentum_source[(idx * n + m) * 3 + d] = src[idx * q + 5 * m + 1 + d];
+        ice.energy_source[idx * n + m] = src[idx * q + 5 * m + 4];
+      }
+    PetscCall(VecRestoreArray(c.source_local, &src));
+  }
   PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -27,6 +27,8 @@ struct Coupling {
   PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
   DM                                      da_phi = nullptr;    // nodes: burnt fraction per solid
   Vec                                     phi_global = nullptr, phi_local = nullptr;
+  DM                                      da_source = nullptr; // cells: the burn sources, ghosts added to their owners
+  Vec                                     source_global = nullptr, source_local = nullptr;
   ~Coupling()
   {
     VecDestroy(&mass_global);
@@ -38,6 +40,9 @@ struct Coupling {
     VecDestroy(&phi_global);
     VecDestroy(&phi_local);
     DMDestroy(&da_phi);
+    VecDestroy(&source_global);
+    VecDestroy(&source_local);
+    DMDestroy(&da_source);
   }
 };
 
