@@ -267,7 +267,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           PetscReal T = (rho_L * c[q_fields[dim]] + outs[1 + dim][idx]) / rho;
           if (total) {
             T -= 0.5 * u2 / cv;
-            if (!(T > 0) && c[ice.Offset(m, icef::theta)] < 1e-6) T = c[ice.Offset(m, icef::temp_L)];
+            if (!(T > 0) && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) T = c[ice.Offset(m, icef::temp_L)];
           }
           if (!bad && !(T > 0)) bad = "temperature";
           for (PetscInt d = 0; d < dim && !bad; ++d)

@@ -103,6 +103,7 @@ struct IceSolver {
   PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit
   PetscReal dt_fixed = 0;            // -ice_dt
   PetscReal rho_tiny = 1e-12;        // fraction of the material density kept where it is absent
+  PetscReal trace_fraction = 1e-6;   // a gas below this volume fraction is a trace: no compression work, not in the CFL
   PetscReal outer_tolerance = 1e-8;  // semi-implicit: max |residual| / V over cells
   PetscInt  outer_max_iterations = 20;
   PetscInt  equilibration_max_iterations = 100;

@@ -64,6 +64,11 @@ PetscErrorCode IceSources(IceSolver &ice)
           }
           PetscReal T_L;
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
+          else if (theta < ice.trace_fraction) {
+            // a trace of gas (a cell the solids fill): no compression work, which would heat a
+            // mass of rho_tiny by the solids' pressure changes to absurd temperatures
+            T_L = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + de) / (rho_L * mat.eos->cv);
+          }
           else if (ice.conservative_energy) {
             // total energy from the work of the face pressures on the face volume fluxes, plus what
             // the converted mass brings, minus the kinetic energy: conservative, so shocks move at
