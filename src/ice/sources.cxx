@@ -50,7 +50,7 @@ PetscErrorCode IceSources(IceSolver &ice)
           const PetscReal  dr  = ice.has_mass_source ? ice.mass_source[idx * n + m] : 0;
           const PetscReal *dmv = ice.has_mass_source ? &ice.momentum_source[(idx * n + m) * 3] : nullptr;
           const PetscReal  de  = ice.has_mass_source ? ice.energy_source[idx * n + m] : 0;
-          const PetscReal  rho_L = PetscMax(rho + dr, ice.rho_tiny / c[ice.Offset(m, icef::spvol)]);
+          const PetscReal  rho_L = dr < 0 ? PetscMax(rho + dr, ice.rho_tiny / c[ice.Offset(m, icef::spvol)]) : rho + dr;
           c[ice.Offset(m, icef::rho_L)] = rho_L;
           PetscReal u2 = 0, uL2 = 0, ke_in = 0;
           for (PetscInt d = 0; d < 3; ++d) {
