@@ -201,6 +201,29 @@ def failure_response(args):
     finish("failure_response", failures)
 
 
+def failed_temperature(args):
+    """A point of the paper's 4340 set (Mie-Gruneisen, Gamma 1.69) that fails in hydrostatic expansion:
+    with zero_stress it carries nothing and does no work, so its temperature stays as it was when it
+    failed; without a failure response the isentropic term -Gamma T tr(D) dt keeps cooling it (which
+    is what took eroded particles of the cylinder from 600 K to 9 K before)."""
+    failures = []
+    base = ["-options_file", os.path.join(ROOT, "options/materials/steel_4340_paper.opts"), "-point_path", "velocity_gradient",
+            "-point_velocity_gradient", "1,0,0,0,1,0,0,0,1", "-point_rate", "100", "-point_final_strain", "0.3", "-point_steps", "60"]
+    with tempfile.TemporaryDirectory() as tmp:
+        rows = {r: point(args.burst, base + ["-steel_failure_response", r], os.path.join(tmp, f"{r}.csv")) for r in ("zero_stress", "none")}
+    zs = rows["zero_stress"]
+    first = next(i for i, row in enumerate(zs) if int(row["failed"]))
+    T_fail, T_end = float(zs[first]["temperature"]), float(zs[-1]["temperature"])
+    T_none = float(rows["none"][-1]["temperature"])
+    print(f"  failed at step {first} of {len(zs) - 1} at {T_fail:.6f} K; zero_stress ends at {T_end:.6f} K; without a response the point ends at {T_none:.3f} K")
+    check("zero_stress: |T_end - T_at_failure| (K)", abs(T_end - T_fail), 1e-9, failures)
+    ok = T_none < T_fail - 10
+    print(f"  without a response the expansion cools the point by more than 10 K (the check can fail): {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("cooling without response")
+    finish("failed_temperature", failures)
+
+
 # Johnson & Cook (1985) 4340 Rc 30 data (verification.md 5): rate, T0, stress at eps_p 0/0.05/0.10/0.20 (MPa)
 JC_DATA = [("tension", 0.002, 298, [808.7, 968.9, 1042.8, 1135.1]), ("torsion", 0.009, 298, [798.2, 933.4, 988.4, 1027.1]),
            ("torsion", 0.1, 298, [774.9, 899.0, 961.8, 1006.1]), ("torsion", 1.1, 298, [865.6, 1003.3, 1067.1, 1114.7]),
@@ -246,9 +269,10 @@ def main():
     sub.add_parser("jc_4340")
     sub.add_parser("rotation")
     sub.add_parser("failure_response")
+    sub.add_parser("failed_temperature")
     args = p.parse_args()
     {"simple_shear": simple_shear, "linear_hardening": linear_hardening, "heating": heating, "jc_4340": jc_4340, "rotation": rotation,
-     "failure_response": failure_response}[args.cmd](args)
+     "failure_response": failure_response, "failed_temperature": failed_temperature}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -389,7 +389,12 @@ public:
         // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
         const PetscReal matrix = settings.yield == YieldType::GTN ? 1 - porosity_old[k] : 1;
         plastic_work[k]        = matrix * c.flow_stress[k] * de / c.density[k]; // J/kg; times mass below
-        if (adiabatic) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
+        // A point that failed with zero_stress carries no stress, so it does no work: neither plastic
+        // heating nor the isentropic cooling -Gamma T tr(D) dt, which would take a failed fragment
+        // that swells freely from 600 K to a few kelvin; its temperature stays as it failed, with or
+        // without a gas around it (the coupling takes its mass and temperature, never its volume).
+        const bool inert = failure_response == FailureResponse::ZeroStress && failed[c.index[k]];
+        if (adiabatic && !inert) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
         c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
       }
       damage->Evaluate(c);
