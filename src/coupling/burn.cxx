@@ -70,7 +70,7 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
     ice.energy_source.assign(nlocal * ice.nmat, 0);
     c.burnt_fraction.assign(nlocal * c.nsolid, 0);
     PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nsolid, &c.da_phi));
-    PetscCall(DMDACreateCompatibleDMDA(ice.da, 5 * ice.nmat, &c.da_source));
+    PetscCall(DMDACreateCompatibleDMDA(ice.da, 5 * ice.nmat + c.nsolid, &c.da_source));
     PetscCall(DMCreateGlobalVector(c.da_source, &c.source_global));
     PetscCall(DMCreateLocalVector(c.da_source, &c.source_local));
     PetscCall(DMCreateGlobalVector(c.da_phi, &c.phi_global));
@@ -164,7 +164,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
   // sources put in ghost cells belong to the neighbour ranks: add them there, then refresh ghosts
   {
     PetscScalar   *src;
-    const PetscInt nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2], q = 5 * n;
+    const PetscInt nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2], q = 5 * n + c.nsolid;
     PetscCall(VecGetArray(c.source_local, &src));
     for (PetscInt idx = 0; idx < nlocal; ++idx)
       for (PetscInt m = 0; m < n; ++m) {
@@ -172,6 +172,10 @@ PetscErrorCode CouplingBurn(Simulation &sim)
         for (PetscInt d = 0; d < 3; ++d) src[idx * q + 5 * m + 1 + d] = ice.momentum_source[(idx * n + m) * 3 + d];
         src[idx * q + 5 * m + 4] = ice.energy_source[idx * n + m];
       }
+    // the burnt fractions travel along (set on owned cells only, so the add leaves them as they are),
+    // and come back in the ghost cells, which the nodes at a rank boundary need
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt s = 0; s < c.nsolid; ++s) src[idx * q + 5 * n + s] = c.burnt_fraction[idx * c.nsolid + s];
     PetscCall(VecRestoreArray(c.source_local, &src));
     PetscCall(VecZeroEntries(c.source_global));
     PetscCall(DMLocalToGlobal(c.da_source, c.source_local, ADD_VALUES, c.source_global));
@@ -183,6 +187,8 @@ PetscErrorCode CouplingBurn(Simulation &sim)
         for (PetscInt d = 0; d < 3; ++d) ice.momentum_source[(idx * n + m) * 3 + d] = src[idx * q + 5 * m + 1 + d];
         ice.energy_source[idx * n + m] = src[idx * q + 5 * m + 4];
       }
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt s = 0; s < c.nsolid; ++s) c.burnt_fraction[idx * c.nsolid + s] = src[idx * q + 5 * n + s];
     PetscCall(VecRestoreArray(c.source_local, &src));
   }
   PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
