@@ -34,39 +34,10 @@ PetscErrorCode BurnModelRegistryDestroy()
 
 PetscErrorCode BurnModelCreate(MPI_Comm comm, const char material[], BurnModel **model)
 {
-  char              type[256] = "none";
-  PetscFunctionList list      = nullptr;
-  BurnModelCreateFn create    = nullptr;
-  const std::string prefix    = std::string(material) + "_";
-  std::string       names;
-
+  PetscFunctionList list = nullptr;
   PetscFunctionBeginUser;
-  *model = nullptr;
   PetscCall(BurnModelList(&list));
-  PetscCall(FunctionListNames(list, names));
-  PetscOptionsBegin(comm, prefix.c_str(), "Reactant burn model", "Burn");
-  PetscCall(PetscOptionsFList("-burn_type", "Burn model of the reactant (solid -> product gas)", "BurnModelCreate", list, type, type, sizeof(type), nullptr));
-  PetscOptionsEnd();
-  PetscCall(PetscFunctionListFind(list, type, &create));
-  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "Unknown burn model '%s' for -%sburn_type; valid choices: %s", type, prefix.c_str(), names.c_str());
-  BurnModel *created = nullptr;
-  PetscCall(create(&created));
-  std::unique_ptr<BurnModel> owner(created); // freed if reading the parameters fails
-  owner->name_ = type;
-  // a title of its own: PETSc prints -help once per (prefix, title)
-  const std::string title = std::string("Reactant burn model: ") + type + " parameters";
-  PetscOptionsBegin(comm, prefix.c_str(), title.c_str(), "Burn");
-  PetscCall(owner->SetFromOptions(PetscOptionsObject, material));
-  PetscOptionsEnd();
-  *model = owner.release();
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode BurnOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal(opt, help, "BurnModel", *value, value, nullptr));
-  PetscCall(CheckRange(PetscOptionsObject->comm, Prefixed(PetscOptionsObject->prefix, opt).c_str(), *value, lo, hi, open_lower));
+  PetscCall(PointwiseModelCreate(comm, material, list, "burn", "none", "burn model", model));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -33,39 +33,10 @@ PetscErrorCode GasEOSRegistryDestroy()
 
 PetscErrorCode GasEOSCreate(MPI_Comm comm, const char material[], GasEOS **eos)
 {
-  char              type[256] = "ideal_gas";
-  PetscFunctionList list      = nullptr;
-  GasEOSCreateFn    create    = nullptr;
-  const std::string prefix    = std::string(material) + "_";
-  std::string       names;
-
+  PetscFunctionList list = nullptr;
   PetscFunctionBeginUser;
-  *eos = nullptr;
   PetscCall(GasEOSList(&list));
-  PetscCall(FunctionListNames(list, names));
-  PetscOptionsBegin(comm, prefix.c_str(), "ICE material equation of state", "ICE");
-  PetscCall(PetscOptionsFList("-eos_type", "Equation of state of the ICE material", "GasEOSCreate", list, type, type, sizeof(type), nullptr));
-  PetscOptionsEnd();
-  PetscCall(PetscFunctionListFind(list, type, &create));
-  PetscCheck(create, comm, PETSC_ERR_USER_INPUT, "Unknown equation of state '%s' for -%seos_type; valid choices: %s", type, prefix.c_str(), names.c_str());
-  GasEOS *created = nullptr;
-  PetscCall(create(&created));
-  std::unique_ptr<GasEOS> owner(created); // freed if reading the parameters fails
-  owner->name_ = type;
-  // a title of its own: PETSc prints -help once per (prefix, title)
-  const std::string title = std::string("ICE material equation of state: ") + type + " parameters";
-  PetscOptionsBegin(comm, prefix.c_str(), title.c_str(), "ICE");
-  PetscCall(owner->SetFromOptions(PetscOptionsObject, material));
-  PetscOptionsEnd();
-  *eos = owner.release();
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-PetscErrorCode GasEOSOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower)
-{
-  PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal(opt, help, "GasEOS", *value, value, nullptr));
-  PetscCall(CheckRange(PetscOptionsObject->comm, Prefixed(PetscOptionsObject->prefix, opt).c_str(), *value, lo, hi, open_lower));
+  PetscCall(PointwiseModelCreate(comm, material, list, "eos", "ideal_gas", "equation of state", eos));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

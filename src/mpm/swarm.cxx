@@ -104,42 +104,8 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Removes the particles flagged with rank -1 by compaction (petsc.md 4.3), adding their mass and
-// energy to the diagnostics.
-static PetscErrorCode RemoveOutsideParticles(Simulation &sim)
-{
-  PetscInt   n, dim = sim.grid.dim, keep = 0;
-  PetscInt  *rank;
-  PetscReal *mass, *v, *energy;
-  PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
-  PetscCall(fields.Get(DMSwarmField_rank, &rank));
-  PetscCall(fields.Get(field::mass, &mass));
-  PetscCall(fields.Get(field::velocity, &v));
-  PetscCall(fields.Get(field::internal_energy, &energy));
-  std::vector<PetscInt> survivors;
-  survivors.reserve(n);
-  for (PetscInt p = 0; p < n; ++p) {
-    if (rank[p] >= 0) {
-      survivors.push_back(p);
-      continue;
-    }
-    PetscReal v2 = 0;
-    for (PetscInt d = 0; d < dim; ++d) v2 += v[p * dim + d] * v[p * dim + d];
-    sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
-    sim.diag.removed_mass += mass[p];
-    sim.diag.removed_particles++;
-  }
-  PetscCall(fields.RestoreAll());
-  keep = (PetscInt)survivors.size();
-  if (keep == n) PetscFunctionReturn(PETSC_SUCCESS);
-  for (PetscInt k = 0; k < keep; ++k)
-    if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k)); // copies source into destination
-  PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
+// Removes the flagged particles by compaction (petsc.md 4.3), adding their mass and energy to the
+// diagnostics and updating the global count.
 PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed)
 {
   PetscInt   n, dim = sim.grid.dim;
@@ -203,9 +169,19 @@ PetscErrorCode MigrateParticles(Simulation &sim)
       SETERRQ(sim.comm, PETSC_ERR_USER, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " particle(s) left the domain (-mpm_outside_domain error); enlarge -grid_lower/-grid_upper or use -mpm_outside_domain remove", sim.step, global_outside);
     }
     removed_before = sim.diag.removed_particles;
-    PetscCall(RemoveOutsideParticles(sim));
+    {
+      PetscInt        np;
+      const PetscInt *rank;
+      PetscCall(DMSwarmGetLocalSize(sim.swarm, &np));
+      std::vector<char> remove(np);
+      SwarmAccess       fields(sim.swarm);
+      PetscCall(fields.Get(DMSwarmField_rank, &rank));
+      for (PetscInt p = 0; p < np; ++p) remove[p] = rank[p] < 0;
+      PetscCall(fields.RestoreAll());
+      PetscInt64 removed;
+      PetscCall(RemoveParticles(sim, remove, &removed));
+    }
     PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", sim.step, sim.diag.removed_particles - (PetscInt)removed_before));
-    sim.total_particles -= global_outside;
   }
   PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE));
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
