@@ -65,6 +65,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}};
     if (!sim.materials.empty() && IceMaterialsRequested(sim.comm)) PetscCall(CouplingSolidMaterials(sim, spec.solids));
     PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
+    if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(sim));
     if (!sim.ice && sim.coupling) PetscCall(CouplingDestroy(sim));
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }

@@ -79,6 +79,26 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CouplingBurnHelp(Simulation &sim)
+{
+  PetscReal burnout = 1e-3;
+  char      product[256] = "";
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
+  PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", burnout, &burnout, nullptr));
+  PetscOptionsEnd();
+  for (const auto &mat : sim.materials) {
+    BurnModel        *model;
+    const std::string pre = std::string(mat->Name()) + "_";
+    PetscCall(BurnModelCreate(sim.comm, mat->Name(), &model));
+    delete model;
+    PetscOptionsBegin(sim.comm, pre.c_str(), "Burning", "Coupling");
+    PetscCall(PetscOptionsString("-burn_product", "The gas material (one of -ice_materials) that the burnt solid becomes", "", product, product, sizeof(product), nullptr));
+    PetscOptionsEnd();
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingBurn(Simulation &sim)
 {
   Coupling          &c   = *sim.coupling;

@@ -34,6 +34,7 @@ PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat ->
 // in each cell (after the equilibration); the particles' share of it (right after, at the positions
 // the cells were projected from, so that the particles lose exactly what the gas gains).
 PetscErrorCode CouplingBurnSetUp(Simulation &sim);
+PetscErrorCode CouplingBurnHelp(Simulation &sim); // -help: list the burning options
 PetscErrorCode CouplingBurn(Simulation &sim);
 PetscErrorCode CouplingBurnParticles(Simulation &sim);
 

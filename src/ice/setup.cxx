@@ -330,6 +330,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   PetscCall(ReadOptions(*ice, rs));
   ice->ngas = ice->nmat;
   if (ice->nmat == 0 || help) {
+    if (help && !grid.solids.empty()) PetscCall(ReadSolidExchange(*ice)); // listed by -help
     for (const IceSolidSpec &s : grid.solids) delete s.eos;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
