@@ -76,7 +76,7 @@ public:
     PetscFunctionBeginUser;
     const PetscReal K  = 4 * kappa_g * B_g * W * W * P * P / (C_p * R * R); // Da = K/mdot^2
     PetscReal       lo = T0 + Q_c / C_p, hi = T0 + (Q_c + Q_g) / C_p;
-    PetscReal       T  = 850, m = 0, dlnm2 = 0;
+    PetscReal       T  = 850, m = 0, dlnm2 = 0, g_prev = PETSC_MAX_REAL;
     if (!(T > lo && T < hi)) T = 0.5 * (lo + hi);
     for (int it = 0; it < 200; ++it) {
       Rate(T, T0, rho, &m, &dlnm2);
@@ -91,8 +91,15 @@ public:
       else hi = T;
       const PetscReal dg = 1 + (Q_g / C_p) * Da * dlnm2 / (s * (s + 1) * (s + 1));
       PetscReal       Tn = T - g / dg;
-      if (!(Tn > lo && Tn < hi)) Tn = 0.5 * (lo + hi); // Newton left the bracket: bisect
-      if (Tn == T) break;                               // bracket exhausted at double precision
+      // bisect when Newton leaves the bracket or does not halve the residual: at GPa pressures it
+      // jumps from side to side of the root without closing in (measured at 1.39 GPa)
+      if (!(Tn > lo && Tn < hi) || std::fabs(g) > 0.5 * g_prev) Tn = 0.5 * (lo + hi);
+      g_prev = std::fabs(g);
+      if (Tn == T || hi - lo <= 1e-13 * T) { // the root is bracketed to double precision: where
+        *Ts_out   = T;                      // g is steep (high pressure) |g| < 1e-6 K may be out
+        *mdot_out = m;                      // of reach of one ulp of T
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
       T = Tn;
     }
     SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Steady Burn: the surface temperature did not converge (T0 %g K, P %g Pa, rho %g kg/m^3, last T_s %g K)", (double)T0, (double)P, (double)rho, (double)T);

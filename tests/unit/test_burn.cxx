@@ -316,6 +316,26 @@ TEST(burn, SteadyBurnOracle)
   }
 }
 
+// The state at which a coupled cylinder run stopped (1.39 GPa, T0 clamped to 550 K, the reactant
+// compressed to 3932 kg/m^3): the WSB relation is so steep there that one ulp of T_s moves the residual
+// by more than 1e-6 K; the solver must return the root bracketed to double precision, and the rate
+// must exceed the 100 MPa rate of the table (it grows with pressure).
+TEST(burn, SteadyBurnHighPressure)
+{
+  ScopedOptions o;
+  o.Set("-pbx_burn_type", "steady_burn");
+  auto      m  = Create("pbx");
+  BurnInput in = BurningCell();
+  in.p         = 1.39121e9;
+  in.T_s       = 600;
+  in.rho_s     = 3931.99;
+  PetscReal mdot = 0, Ts = 0;
+  ASSERT_EQ(m->MassFlux(in, &mdot, &Ts), 0);
+  EXPECT_GT(Ts, 550 + 4.0e5 / 1400);
+  EXPECT_LT(Ts, 550 + (4.0e5 + 3.018e6) / 1400);
+  EXPECT_GT(mdot, 204.2);
+}
+
 TEST(burn, SteadyBurnIgnitionAndClamp)
 {
   ScopedOptions o;
