@@ -79,6 +79,14 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Allreduce(&sim.coupling->burnt_mass, burnt_mass, 1, MPIU_REAL, MPI_SUM, sim.comm));
+  *burnt_particles = sim.coupling->burnt_particles;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingBurnHelp(Simulation &sim)
 {
   PetscReal burnout = 1e-3;

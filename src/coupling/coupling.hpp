@@ -35,6 +35,8 @@ PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat ->
 // the cells were projected from, so that the particles lose exactly what the gas gains).
 PetscErrorCode CouplingBurnSetUp(Simulation &sim);
 PetscErrorCode CouplingBurnHelp(Simulation &sim); // -help: list the burning options
+// summary.json: the mass burnt into gas and the burnt-out particles removed (collective).
+PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles);
 PetscErrorCode CouplingBurn(Simulation &sim);
 PetscErrorCode CouplingBurnParticles(Simulation &sim);
 

@@ -7,6 +7,7 @@
 #include "mpm/swarm_access.hpp"
 #include "mpm/analytic.hpp"
 #include "ice/ice.hpp"
+#include "coupling/coupling.hpp"
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -215,6 +216,11 @@ PetscErrorCode WriteSummary(Simulation &sim)
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(AnalyticTemperatureError(sim, &Trms, &Tmax));
   IceTotals gas;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
+  PetscReal  burnt_mass      = 0;
+  PetscInt64 burnt_particles = 0;
+  if (sim.coupling) PetscCall(CouplingSummary(sim, &burnt_mass, &burnt_particles));
+  PetscInt64 fallbacks = 0; // cells that fell back to the -p dV energy form
+  if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
   const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
@@ -268,6 +274,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"internal_energy\": " << gas.internal_energy << ", \"kinetic_energy\": " << gas.kinetic_energy << ", \"total_energy\": " << e << ", \"total_energy_change\": " << (e - e0) / e0;
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
     const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
+    s << ", \"energy_fallbacks\": " << fallbacks << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
