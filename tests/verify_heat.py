@@ -57,18 +57,7 @@ def mode_amplitude(p, shape):
     return np.sum(p["mass"].ravel() * (p["temperature"].ravel() - T0) * phi) / np.sum(p["mass"].ravel() * phi * phi)
 
 
-def check(name, value, tol, failures, fmt="{:.3e}"):
-    ok = value <= tol
-    print(f"  {name}: " + fmt.format(value) + f" (tol {tol:g}) {'OK' if ok else 'FAIL'}")
-    if not ok:
-        failures.append(name)
-
-
-def finish(test, failures):
-    if failures:
-        print(f"{test}: FAIL ({', '.join(failures)})")
-        sys.exit(1)
-    print(f"{test}: OK")
+from verify import check, finish  # the verdict lines of every driver (tests/verify.py)
 
 
 def convergence(args):

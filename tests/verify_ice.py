@@ -187,11 +187,7 @@ class Riemann:
 # ---------------------------------------------------------------------------------------------
 # Verdicts
 
-def check(name, value, tol, failures, fmt="{:.3e}"):
-    ok = value <= tol
-    print(f"  {name}: " + fmt.format(value) + f" (tol {tol:g}) {'OK' if ok else 'FAIL'}")
-    if not ok:
-        failures.append(name)
+from verify import check, finish  # the verdict lines of every driver (tests/verify.py)
 
 
 def check_min(name, value, bound, failures, fmt="{:.2f}"):
@@ -199,13 +195,6 @@ def check_min(name, value, bound, failures, fmt="{:.2f}"):
     print(f"  {name}: " + fmt.format(value) + f" (>= {bound:g}) {'OK' if ok else 'FAIL'}")
     if not ok:
         failures.append(name)
-
-
-def finish(test, failures):
-    if failures:
-        print(f"{test}: FAIL ({', '.join(failures)})")
-        sys.exit(1)
-    print(f"{test}: OK")
 
 
 def observed_orders(cells, errors):
@@ -943,6 +932,10 @@ def make_parser():
     t.add_argument("--tol-volume-fraction", type=float, default=1e-8, help="max |sum theta - 1| in profile.csv")
     t.add_argument("--contact-cells", type=float, default=3.0, help="gas a may dominate up to this many cells past the exact contact")
     t.add_argument("--margin-cells", type=float, default=4.0, help="cells left out next to the rarefaction tail and the shock")
+    # measured 3.3e-2: the pressure blip where two gases of different gamma meet, the contact error of
+    # every mixture (volume-fraction) scheme (Abgrall 1996); a single gas shows none. The band is set
+    # a priori at 5 %, not from the measurement; it fails if the contact treatment gets worse (5.1e-2
+    # was seen with a mixed energy form that was then dropped).
     t.add_argument("--tol-contact-pressure", type=float, default=0.05, help="max |p - p*|/p* in the star region")
     t.add_argument("--presence", type=float, default=0.01, help="volume fraction above which a gas counts as present")
     t.add_argument("--tol-velocity-equal", type=float, default=0.01, help="max |u_a - u_b|/|u*| where both are present")

@@ -294,7 +294,6 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   Vec         global = c.phi_global, local = c.phi_local;
   PetscScalar *phi;
   PetscInt    xs[3], xm[3];
-  const PetscInt dim = ice.dim;
   PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArray(global, &phi));
   PetscInt l = 0;
@@ -304,17 +303,14 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
         for (PetscInt s = 0; s < c.nsolid; ++s) {
           PetscReal      sum     = 0;
           const PetscInt node[3] = {i, j, k};
-          for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
-            const PetscInt cell[3] = {i - 1 + (cc & 1), j - 1 + ((cc >> 1) & 1), dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0};
-            bool           inside  = true;
-            for (PetscInt d = 0; d < dim; ++d) inside = inside && cell[d] >= 0 && cell[d] < ice.cells[d];
-            if (inside) sum += c.burnt_fraction[ice.LocalIndex(cell[0], cell[1], cell[2]) * c.nsolid + s];
-          }
+          ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
+            if (inside) sum += c.burnt_fraction[idx * c.nsolid + s];
+          });
           phi[l * c.nsolid + s] = NodeWeight(ice, node) * sum;
         }
   PetscCall(VecRestoreArray(global, &phi));
   PetscCall(DMGlobalToLocal(da, global, INSERT_VALUES, local));
-  std::vector<char>  remove;
+  std::vector<char> &remove = c.burnt_out;
   const PetscScalar *phil;
   PetscCall(VecGetArrayRead(local, &phil));
   BurnParticles kernel{sim, c, phil, remove};

@@ -64,6 +64,7 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
     PetscCheck(set || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Material %s: a scene with gas needs -%sheat_capacity (J/(kg K), > 0) for the heat exchange", mat.Name(), pre.c_str());
     PetscCall(CheckRange(sim.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     c->solid_of[m] = c->nsolid++;
+    c->rho0.push_back(mat.Density());
     eos->name_     = "solid_coupling";
     solids.push_back({mat.Name(), eos.release(), 300});
   }
@@ -185,8 +186,7 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
             MT += w * nd[1];
             for (PetscInt d = 0; d < dim; ++d) P[d] += w * nd[2 + d];
           });
-          const PetscReal rho0   = ice.materials[m].eos->Density(c.p_ref, 300);
-          const PetscReal M_tiny = ice.rho_tiny * rho0 * V;
+          const PetscReal M_tiny = ice.rho_tiny * c.rho0[s] * V;
           const PetscReal T_old  = cell[ice.Offset(m, icef::temp)];
           // an (almost) empty cell keeps its last temperature (ice.md 2.1)
           const PetscReal share = M / (M + M_tiny);
@@ -222,10 +222,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
         PetscReal p = 0;
-        for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
-          const PetscInt ci = i - 1 + (cc & 1), cj = j - 1 + ((cc >> 1) & 1), ck = dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0;
-          p += a[ice.LocalIndex(ci, cj, ck) * ice.stride + ice.CellOffset(icef::press)];
-        }
+        ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool) { p += a[idx * ice.stride + ice.CellOffset(icef::press)]; });
         inc[l * dof] = p / (dim == 3 ? 8 : 4);
       }
   PetscCall(VecRestoreArray(c.inc_global, &inc));
@@ -297,13 +294,9 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
         PetscReal weight = 0, dv[3] = {0, 0, 0}, dT = 0;
-        for (PetscInt cc = 0; cc < (dim == 3 ? 8 : 4); ++cc) {
-          const PetscInt ci = i - 1 + (cc & 1), cj = j - 1 + ((cc >> 1) & 1), ck = dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0;
-          const PetscInt cell[3] = {ci, cj, ck};
-          bool           inside  = true;
-          for (PetscInt d = 0; d < dim; ++d) inside = inside && cell[d] >= 0 && cell[d] < ice.cells[d];
-          if (!inside) continue;
-          const PetscScalar *cl = a + ice.LocalIndex(ci, cj, ck) * ice.stride;
+        ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
+          if (!inside) return;
+          const PetscScalar *cl = a + idx * ice.stride;
           for (PetscInt s = 0; s < c.nsolid; ++s) {
             const PetscInt  m = c.first + s;
             const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
@@ -311,7 +304,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
             for (PetscInt d = 0; d < dim; ++d) dv[d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
             dT += M * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
           }
-        }
+        });
         PetscScalar *ni = inc + l * dof;
         const PetscInt node[3] = {i, j, k};
         for (PetscInt d = 0; d < dim; ++d) {

@@ -10,6 +10,7 @@ struct Coupling {
   PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
   std::vector<PetscInt> solid_of;              // MPM material id -> solid index
   PetscReal             p_ref = 101325;
+  std::vector<PetscReal> rho0;                 // per solid: density as seeded (its coupling EOS at p_ref)
   DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
   Vec                   mass_global = nullptr, mass_local = nullptr;
   DM                    da_inc = nullptr;      // nodes: [p, dv (dim), dT]
@@ -25,6 +26,7 @@ struct Coupling {
   PetscReal                               burnout = 1e-3; // a particle below this fraction of its seeded mass is removed
   PetscReal                               burnt_mass = 0; // kg converted to gas so far (this rank)
   PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
+  std::vector<char>                       burnt_out;           // per local particle, reused every step
   DM                                      da_phi = nullptr;    // nodes: burnt fraction per solid
   Vec                                     phi_global = nullptr, phi_local = nullptr;
   DM                                      da_source = nullptr; // cells: the burn sources, ghosts added to their owners
@@ -62,6 +64,19 @@ inline void ForEachCorner(const IceSolver &ice, PetscInt i, PetscInt j, PetscInt
   for (PetscInt c = 0; c < (ice.dim == 3 ? 8 : 4); ++c) {
     const PetscInt node[3] = {i + (c & 1), j + ((c >> 1) & 1), ice.dim == 3 ? k + ((c >> 2) & 1) : 0};
     f(node, NodeWeight(ice, node));
+  }
+}
+
+// Calls f(local cell index, inside) for the 2^dim cells around node (i, j, k); `inside` says whether
+// the cell is in the domain (the others are boundary ghosts).
+template <class Fn>
+inline void ForEachCellAroundNode(const IceSolver &ice, PetscInt i, PetscInt j, PetscInt k, Fn &&f)
+{
+  for (PetscInt cc = 0; cc < (ice.dim == 3 ? 8 : 4); ++cc) {
+    const PetscInt cell[3] = {i - 1 + (cc & 1), j - 1 + ((cc >> 1) & 1), ice.dim == 3 ? k - 1 + ((cc >> 2) & 1) : 0};
+    bool           inside  = true;
+    for (PetscInt d = 0; d < ice.dim; ++d) inside = inside && cell[d] >= 0 && cell[d] < ice.cells[d];
+    f(ice.LocalIndex(cell[0], cell[1], cell[2]), inside);
   }
 }
 

@@ -97,7 +97,6 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       const PetscReal   theta = c[ice.Offset(m, icef::rho)] / rho_micro[m];
       c[ice.Offset(m, icef::theta)]  = theta;
       c[ice.Offset(m, icef::spvol)]  = 1 / rho_micro[m];
-      c[ice.Offset(m, icef::sound2)] = c2;
       c[ice.Offset(m, icef::kappa)]  = 1 / (rho_micro[m] * c2);
       c[ice.Offset(m, icef::work_p)] = T * s.dp_dT;
       sum_kappa += theta / (rho_micro[m] * c2);

@@ -57,12 +57,11 @@ inline constexpr int spvol = 5;     // specific volume of the material, 1/rho_mi
 inline constexpr int theta = 6;     // volume fraction
 inline constexpr int kappa = 7;     // isentropic compressibility v/c^2, 1/Pa
 inline constexpr int work_p = 8;    // T (dP/dT)_rho: the pressure that does compression work, Pa
-inline constexpr int sound2 = 9;    // sound speed squared, m^2/s^2
-inline constexpr int rho_L = 10;    // Lagrangian bulk density, kg/m^3
-inline constexpr int vel_L = 11;    // Lagrangian (after sources and exchange) velocity, 3 components
-inline constexpr int temp_L = 14;   // Lagrangian temperature, K
-inline constexpr int energy_L = 15; // Lagrangian total energy over c_v, T + |u|^2/(2 c_v), K
-inline constexpr int kMatFields = 16;
+inline constexpr int rho_L = 9;     // Lagrangian bulk density, kg/m^3
+inline constexpr int vel_L = 10;    // Lagrangian (after sources and exchange) velocity, 3 components
+inline constexpr int temp_L = 13;   // Lagrangian temperature, K
+inline constexpr int energy_L = 14; // Lagrangian total energy over c_v, T + |u|^2/(2 c_v), K
+inline constexpr int kMatFields = 15;
 // cell fields after the material blocks
 inline constexpr int press = 0;     // pressure at the end of the step (p^{n+1}), Pa
 inline constexpr int press_eq = 1;  // equilibration pressure of this step, Pa
@@ -125,7 +124,7 @@ struct IceSolver {
   // direction and material: velocity after exchange, before exchange, effective specific volume.
   std::vector<PetscReal> face_vel[3], face_vel_star[3], face_spvol[3], face_spvol_eff[3];
   // Work arrays for advection (gradients, fluxes) and the semi-implicit solve.
-  std::vector<PetscReal> work_grad, work_adv, work_outflow, work_increment, work_advect;
+  std::vector<PetscReal> work_grad, work_adv, work_outflow, work_increment, work_advect, work_pressure;
 
   // Mass conversion of this step (burning, ice.md 2.4), per local cell index and material: bulk
   // density change (kg/m^3; negative for the reactant), momentum (kg/(m^2 s)) and energy (J/m^3)

@@ -69,7 +69,8 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
   PetscScalar   *a;
   const PetscInt S = ice.stride, n = ice.nmat, dim = ice.dim, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   const PetscReal V = ice.CellVolume();
-  std::vector<PetscReal> old_p(nlocal);
+  std::vector<PetscReal> &old_p = ice.work_pressure;
+  old_p.resize(nlocal);
   PetscFunctionBeginUser;
   // P^0 = p_eq
   PetscCall(IceGetLocalArray(ice, &a));

@@ -39,8 +39,12 @@ PetscErrorCode IceSources(IceSolver &ice)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscInt idx = ice.LocalIndex(i, j, k);
         PetscScalar   *c   = a + idx * S;
-        PetscReal      grad_p[3] = {0, 0, 0};
-        for (PetscInt d = 0; d < dim; ++d) grad_p[d] = (face_pressure(idx, idx + ice.lstride[d]) - face_pressure(idx - ice.lstride[d], idx)) / ice.h[d];
+        PetscReal      grad_p[3] = {0, 0, 0}, p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}; // lower, upper face of each direction
+        for (PetscInt d = 0; d < dim; ++d) {
+          p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
+          p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
+          grad_p[d]    = (p_face[d][1] - p_face[d][0]) / ice.h[d];
+        }
         const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
@@ -80,7 +84,7 @@ PetscErrorCode IceSources(IceSolver &ice)
                 const PetscInt  R = faces[s], L = R - ice.lstride[d];
                 const PetscReal u = ice.face_vel[d][R * n + m];
                 const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
-                work -= (s ? 1 : -1) * ice.dt / ice.h[d] * face_pressure(L, R) * theta_f * u;
+                work -= (s ? 1 : -1) * ice.dt / ice.h[d] * p_face[d][s] * theta_f * u;
               }
             }
             const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;

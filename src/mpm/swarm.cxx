@@ -114,7 +114,9 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   std::vector<PetscInt> survivors;
-  {
+  bool                  any = false; // (burning calls this every step; most steps remove nothing)
+  for (PetscInt p = 0; p < n && !any; ++p) any = remove[p];
+  if (any) {
     SwarmAccess fields(sim.swarm);
     PetscCall(fields.Get(field::mass, &mass));
     PetscCall(fields.Get(field::velocity, &v));
@@ -132,11 +134,11 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
       ++local;
     }
     PetscCall(fields.RestoreAll());
+    const PetscInt keep = (PetscInt)survivors.size();
+    for (PetscInt k = 0; k < keep; ++k)
+      if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
+    PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
   }
-  const PetscInt keep = (PetscInt)survivors.size();
-  for (PetscInt k = 0; k < keep; ++k)
-    if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
-  if (keep != n) PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
   PetscCallMPI(MPI_Allreduce(&local, removed, 1, MPIU_INT64, MPI_SUM, sim.comm));
   sim.total_particles -= *removed;
   PetscFunctionReturn(PETSC_SUCCESS);
