@@ -57,6 +57,12 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.viscosity, 2, nullptr));
   PetscCheck(sim.viscosity[0] >= 0 && sim.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");
   PetscCall(PetscOptionsBool("-mpm_convert_failed", "Failed particles join a velocity field of their own, meeting the intact material only through contact (the paper's conversion)", "", sim.convert_failed, &sim.convert_failed, nullptr));
+  {
+    char buf[256] = "";
+    PetscCall(PetscOptionsString("-mpm_contact_material", "Name of a material (of -materials) that moves in a velocity field of its own and meets the others only through contact (-mpm_contact_type), e.g. an explosive that burns away from its container; default none", "", buf, buf, sizeof(buf), &set));
+    if (set) sim.contact_material_name = buf;
+    PetscCheck(!(set && sim.convert_failed), sim.comm, PETSC_ERR_SUP, "Options -mpm_contact_material and -mpm_convert_failed cannot be combined yet (each needs the second velocity field)");
+  }
   choice = (int)sim.contact;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_contact_type", "Contact between velocity fields: no_slip (one velocity where both are present) or friction (Bardenhagen et al. 2001: only approaching fields interact, Coulomb friction)", ContactTypeNames, 2, &choice, nullptr));
   sim.contact = (ContactType)choice;

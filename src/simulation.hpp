@@ -126,18 +126,22 @@ struct Simulation {
   PetscReal   densest = 0;                 // kg/m^3, largest material density
   PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
   PetscBool   convert_failed = PETSC_FALSE; // failed particles move in a velocity field of their own
+  std::string contact_material_name;           // -mpm_contact_material: this material moves in a field of its own
+  PetscInt    contact_material = -1;           // its material id, -1 if none
   PetscBool   ambient_pressure = PETSC_FALSE; // particles carry a surrounding gas's pressure (the coupling sets it)
   ContactType contact = ContactType::Friction;
   PetscReal   friction = 0;                // Coulomb coefficient of the contact between fields
   PetscInt    rigid_material = -1;         // material id of the rigid body, -1 if none
   PetscReal   rigid_velocity[3] = {0, 0, 0};
-  // Velocity fields: 0 intact deformable, 1 converted (failed) particles if -mpm_convert_failed,
-  // last the rigid body if any.
+  // Velocity fields: 0 intact deformable, 1 converted (failed) particles if -mpm_convert_failed or
+  // the material of -mpm_contact_material, last the rigid body if any.
   PetscInt    VelocityField(PetscInt material, PetscInt failed) const
   {
     if (material == rigid_material) return grid.num_velocity_fields - 1;
+    if (material == contact_material) return 1;
     return (convert_failed && failed) ? 1 : 0;
   }
+  bool        TwoDeformableFields() const { return convert_failed || contact_material >= 0; }
 
   // Output
   PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)

@@ -107,6 +107,14 @@ PetscErrorCode CouplingBurnHelp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The volume fraction of the gases in local cell idx (from this step's equilibration).
+static PetscReal GasRoom(const IceSolver &ice, const PetscScalar *a, PetscInt idx)
+{
+  PetscReal room = 0;
+  for (PetscInt g = 0; g < ice.ngas; ++g) room += a[idx * ice.stride + ice.Offset(g, icef::theta)];
+  return room;
+}
+
 PetscErrorCode CouplingBurn(Simulation &sim)
 {
   Coupling          &c   = *sim.coupling;
@@ -138,10 +146,12 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           if (!c.burn[s] || c.product[s] < 0) continue;
           const PetscInt  m = c.first + s, g = c.product[s];
           const PetscReal M = cell[ice.Offset(m, icef::rho)] * V;
-          // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1)
+          // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1). A node on a
+          // domain face holds the mass of half a neighbourhood: it counts double (ice.md 7.10), or
+          // every symmetry plane through a reactant would look like a burning surface.
           PetscReal Mmax = 0, Mmin = PETSC_MAX_REAL, grad[3] = {0, 0, 0};
-          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal) {
-            const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride];
+          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
+            const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride] * w * (dim == 3 ? 8 : 4);
             Mmax               = PetscMax(Mmax, mn);
             Mmin               = PetscMin(Mmin, mn);
             const PetscInt local[3] = {node[0] - i, node[1] - j, node[2] - k};
@@ -167,21 +177,33 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           for (PetscInt d = 0; d < dim; ++d) ice.momentum_source[(idx * n + m) * 3 + d] -= dr * cell[ice.Offset(m, icef::vel + d)];
           ice.energy_source[idx * n + m] -= dr * cv * Ts;
           // The products leave the burning surface on its gas side: into the neighbours across the
-          // faces the outward normal -grad M points through, in proportion to |n_d|. (Released
-          // inside a cell that the reactant fills, the gas would have no room: its volume would
-          // compress the solid there, sum kappa being the solid's, by orders of magnitude.)
-          PetscReal norm = 0;
+          // faces the outward normal -grad M points through, in proportion to |n_d| and to the room
+          // the gases have there (their volume fraction), the rest into the burning cell itself.
+          // (Released inside a cell that the reactant fills next to open gas, the gas would have no
+          // room: its volume would compress the solid there, sum kappa being the solid's, by orders
+          // of magnitude; released into a neighbour that another solid fills, e.g. the container
+          // wall, it would be trapped there at the wall's pressure.)
+          PetscReal norm = 0, weight[4], total = 0;
+          PetscInt  target[4];
           for (PetscInt d = 0; d < dim; ++d) norm += std::fabs(grad[d]);
+          target[dim] = idx;
+          weight[dim] = GasRoom(ice, a, idx);
           for (PetscInt d = 0; d < dim; ++d) {
             const PetscReal share = norm > 0 ? std::fabs(grad[d]) / norm : (d == 0 ? 1.0 : 0.0);
-            if (share == 0) continue;
             PetscInt        ijk[3] = {i, j, k};
             ijk[d] += grad[d] > 0 ? -1 : 1;
             if (ijk[d] < 0 || ijk[d] >= ice.cells[d]) ijk[d] = d == 0 ? i : d == 1 ? j : k; // at a domain face: here
-            const PetscInt target = ice.LocalIndex(ijk[0], ijk[1], ijk[2]);
-            ice.mass_source[target * n + g] += share * dr;
-            for (PetscInt e = 0; e < dim; ++e) ice.momentum_source[(target * n + g) * 3 + e] += share * dr * cell[ice.Offset(m, icef::vel + e)];
-            ice.energy_source[target * n + g] += share * dr * (cv * Ts + out.Q);
+            target[d] = ice.LocalIndex(ijk[0], ijk[1], ijk[2]);
+            weight[d] = share * GasRoom(ice, a, target[d]);
+          }
+          for (PetscInt d = 0; d <= dim; ++d) total += weight[d];
+          for (PetscInt d = 0; d <= dim; ++d) {
+            const PetscReal share = total > 0 ? weight[d] / total : (d == dim ? 1.0 : 0.0); // no room anywhere: here
+            if (share == 0) continue;
+            const PetscInt t = target[d];
+            ice.mass_source[t * n + g] += share * dr;
+            for (PetscInt e = 0; e < dim; ++e) ice.momentum_source[(t * n + g) * 3 + e] += share * dr * cell[ice.Offset(m, icef::vel + e)];
+            ice.energy_source[t * n + g] += share * dr * (cv * Ts + out.Q);
           }
           c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
           c.burnt_mass += out.dm;

@@ -125,9 +125,10 @@ struct ParticleKernel {
   {
     const Grid          &g = sim.grid;
     const LocalNodeIndex index(g);
-    const PetscInt       dof = 2 + DIM;
+    const PetscInt       dof = c.IncDof(DIM);
     PetscInt             n;
     const PetscReal     *x, *hw, *F;
+    const PetscInt      *mat = nullptr;
     PetscReal           *out;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
@@ -136,11 +137,13 @@ struct ParticleKernel {
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(pressure ? field::ambient_pressure : field::temperature, &out));
+    if (!pressure && c.nfield > 1) PetscCall(fields.Get(field::material, &mat));
     Stencil<DIM, S> st;
-    const PetscInt  q = pressure ? 0 : 1 + DIM;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      PetscReal value = 0;
+      // the pressure, or the temperature increment of the particle's own velocity field
+      const PetscInt q     = pressure ? 0 : 1 + (mat ? c.field_of[c.solid_of[mat[p]]] : 0) * (DIM + 1) + DIM;
+      PetscReal      value = 0;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { value += N * inc[index(i, j, k) * dof + q]; });
       if (pressure) out[p] = value - c.p_ref;
       else out[p] += value;
@@ -209,7 +212,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   const PetscScalar *a;
   PetscScalar       *inc;
   PetscInt           xs[3], xm[3];
-  const PetscInt     dim = ice.dim, dof = 2 + dim;
+  const PetscInt     dim = ice.dim, dof = c.IncDof(dim);
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
   // nodal pressure: the mean of the cells around each owned node (ghost cells carry the boundary
@@ -243,7 +246,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   const PetscScalar *nodes, *vel;
   PetscScalar       *a;
   const LocalNodeIndex index(sim.grid);
-  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = 2 * dim;
+  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
@@ -259,7 +262,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
           PetscReal      P[3] = {0, 0, 0};
           ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
             const PetscInt n = index(node[0], node[1], node[2]);
-            for (PetscInt d = 0; d < dim; ++d) P[d] += w * nodes[n * c.mass_stride + s * stride] * vel[n * vdof + dim + d];
+            for (PetscInt d = 0; d < dim; ++d) P[d] += w * nodes[n * c.mass_stride + s * stride] * vel[n * vdof + c.field_of[s] * 2 * dim + dim + d];
           });
           for (PetscInt d = 0; d < dim; ++d) cell[ice.Offset(m, icef::vel + d)] = P[d] / (cell[ice.Offset(m, icef::rho)] * V);
         }
@@ -280,10 +283,11 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   const PetscScalar *a;
   PetscScalar       *inc, *vel;
   PetscInt           xs[3], xm[3];
-  const PetscInt     dim = ice.dim, dof = 2 + dim;
+  const PetscInt     dim = ice.dim, dof = c.IncDof(dim), vdof = g.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
-  // per owned node: the solid-mass weighted mean of the increments of the cells around it
+  // per owned node and velocity field: the solid-mass weighted mean of the increments of the cells
+  // around it, over the solids that move in that field
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(ice.local, &a));
   PetscCall(VecGetArray(c.inc_global, &inc));
@@ -293,34 +297,36 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
-        PetscReal weight = 0, dv[3] = {0, 0, 0}, dT = 0;
+        PetscReal weight[2] = {0, 0}, dv[2][3] = {{0, 0, 0}, {0, 0, 0}}, dT[2] = {0, 0};
         ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
           if (!inside) return;
           const PetscScalar *cl = a + idx * ice.stride;
           for (PetscInt s = 0; s < c.nsolid; ++s) {
-            const PetscInt  m = c.first + s;
+            const PetscInt  m = c.first + s, f = c.field_of[s];
             const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
-            weight += M;
-            for (PetscInt d = 0; d < dim; ++d) dv[d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
-            dT += M * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
+            weight[f] += M;
+            for (PetscInt d = 0; d < dim; ++d) dv[f][d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
+            dT[f] += M * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
           }
         });
-        PetscScalar *ni = inc + l * dof;
         const PetscInt node[3] = {i, j, k};
-        for (PetscInt d = 0; d < dim; ++d) {
-          PetscReal value = weight > 0 ? dv[d] / weight : 0;
-          // the boundary conditions of the grid hold: no normal change on a symmetry face, none on a fixed one
-          for (int side = 0; side < 2; ++side) {
-            const bool on_face = side == 0 ? node[d] == 0 : node[d] == g.cells[d];
-            if (on_face && g.bc[d][side] == FaceBC::Symmetry) value = 0;
+        for (PetscInt f = 0; f < c.nfield; ++f) {
+          PetscScalar *ni = inc + l * dof + 1 + f * (dim + 1);
+          for (PetscInt d = 0; d < dim; ++d) {
+            PetscReal value = weight[f] > 0 ? dv[f][d] / weight[f] : 0;
+            // the boundary conditions of the grid hold: no normal change on a symmetry face, none on a fixed one
+            for (int side = 0; side < 2; ++side) {
+              const bool on_face = side == 0 ? node[d] == 0 : node[d] == g.cells[d];
+              if (on_face && g.bc[d][side] == FaceBC::Symmetry) value = 0;
+            }
+            for (PetscInt e = 0; e < dim; ++e)
+              for (int side = 0; side < 2; ++side)
+                if ((side == 0 ? node[e] == 0 : node[e] == g.cells[e]) && g.bc[e][side] == FaceBC::Fixed) value = 0;
+            ni[d] = value;
+            vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
           }
-          for (PetscInt e = 0; e < dim; ++e)
-            for (int side = 0; side < 2; ++side)
-              if ((side == 0 ? node[e] == 0 : node[e] == g.cells[e]) && g.bc[e][side] == FaceBC::Fixed) value = 0;
-          ni[1 + d] = value;
-          vel[l * 2 * dim + dim + d] += value; // v_new of the (only) velocity field
+          ni[dim] = weight[f] > 0 ? dT[f] / weight[f] : 0;
         }
-        ni[1 + dim] = weight > 0 ? dT / weight : 0;
       }
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArray(c.inc_global, &inc));
@@ -349,14 +355,18 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   Coupling  &c   = *sim.coupling;
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
-  PetscCheck(sim.grid.num_velocity_fields == 1, sim.comm, PETSC_ERR_SUP, "A scene with gas and particles supports one velocity field: -mpm_convert_failed and rigid bodies are not coupled to the gas yet");
+  PetscCheck(!sim.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
   c.mass_stride = c.nsolid * (2 + sim.grid.dim);
+  c.nfield      = sim.TwoDeformableFields() ? 2 : 1;
+  c.field_of.assign(c.nsolid, 0);
+  for (size_t m = 0; m < sim.materials.size(); ++m)
+    if (c.solid_of[m] >= 0) c.field_of[c.solid_of[m]] = sim.VelocityField((PetscInt)m, 0);
   PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.mass_stride, &c.da_mass));
   PetscCall(DMCreateGlobalVector(c.da_mass, &c.mass_global));
   PetscCall(DMCreateLocalVector(c.da_mass, &c.mass_local));
-  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 2 + sim.grid.dim, &c.da_inc));
+  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.IncDof(sim.grid.dim), &c.da_inc));
   PetscCall(DMCreateGlobalVector(c.da_inc, &c.inc_global));
   PetscCall(DMCreateLocalVector(c.da_inc, &c.inc_local));
   // the first projection, then the gases give up the volume the solids take at the cell pressure

@@ -13,9 +13,12 @@ struct Coupling {
   std::vector<PetscReal> rho0;                 // per solid: density as seeded (its coupling EOS at p_ref)
   DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
   Vec                   mass_global = nullptr, mass_local = nullptr;
-  DM                    da_inc = nullptr;      // nodes: [p, dv (dim), dT]
+  DM                    da_inc = nullptr;      // nodes: [p, then per deformable velocity field: dv (dim), dT]
   Vec                   inc_global = nullptr, inc_local = nullptr;
   PetscInt              mass_stride = 0;
+  PetscInt              nfield = 1;            // deformable velocity fields (2 with -mpm_contact_material)
+  std::vector<PetscInt> field_of;              // per solid: its velocity field
+  PetscInt              IncDof(PetscInt dim) const { return 1 + nfield * (dim + 1); }
   // Burning (burn.cxx), per solid: the model (null: inert), the product gas (ICE material index),
   // the mass of a particle as seeded (burnt-out threshold); per local cell and solid, the fraction
   // of the solid's cell mass burnt this step.

@@ -21,7 +21,8 @@ static inline void ApplyBoundaryConditions(const Grid &g, const PetscInt node[],
   }
 }
 
-// Contact between the two velocity fields of a node (intact and converted particles), Bardenhagen
+// Contact between the two deformable velocity fields of a node (intact and converted particles, or
+// the material of -mpm_contact_material and the rest), Bardenhagen
 // et al., CMES 2 (2001) 509: no_slip gives both the centre-of-mass velocity; friction acts only while
 // the fields approach along the common normal n (from field 0 towards field 1, from the difference
 // of the nodal mass gradients, which point out of each body), removes the approaching normal velocity and limits the tangential slip by Coulomb
@@ -145,7 +146,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
               RigidContact(sim, dim, gr, sim.rigid_velocity, v_new[vf]);
             }
         }
-        if (sim.convert_failed && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
+        if (sim.TwoDeformableFields() && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
           const PetscReal *g0 = grads[0], *g1 = grads[1];
           Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
           Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);

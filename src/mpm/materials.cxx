@@ -33,7 +33,13 @@ PetscErrorCode CreateMaterials(Simulation &sim)
       PetscCheck(sim.rigid_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Only one rigid material is supported; -materials lists %s and %s", sim.materials[sim.rigid_material]->Name(), sim.materials[i]->Name());
       sim.rigid_material = i;
     }
-  sim.grid.num_velocity_fields = 1 + (sim.convert_failed ? 1 : 0) + (sim.rigid_material >= 0 ? 1 : 0);
+  if (!sim.contact_material_name.empty()) {
+    for (PetscInt i = 0; i < (PetscInt)sim.materials.size(); ++i)
+      if (sim.contact_material_name == sim.materials[i]->Name()) sim.contact_material = i;
+    PetscCheck(sim.contact_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_contact_material %s: not one of the materials of -materials", sim.contact_material_name.c_str());
+    PetscCheck(sim.contact_material != sim.rigid_material, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_contact_material %s: the rigid body has a field of its own already", sim.contact_material_name.c_str());
+  }
+  sim.grid.num_velocity_fields = 1 + (sim.TwoDeformableFields() ? 1 : 0) + (sim.rigid_material >= 0 ? 1 : 0);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
