@@ -13,6 +13,11 @@ Writes into OUTPUT_DIR
                  the gas's kinetic, internal and total energy and its mass change).
   gas.png        a run with gas: pressure and mixture density of the last gas_NNNNNN.h5 (2-D: maps,
                  3-D: the mid-z slice, a tube one cell wide: profiles along x).
+  burst.png      particles and gas together (2-D or the mid-z slice): the particles of the last
+                 output coloured by fragment (failed ones grey), over the gas pressure of the same
+                 step.
+  histories.png  a run with gas and particles: the largest cell pressure and, with -grady, the mean
+                 radial (expansion) velocity of the container against time (monitor.csv).
 
 Fields (--field): vonmises (sqrt(3/2 s:s) of the Cauchy stress), pressure (-tr(sigma)/3), speed,
 displacement (magnitude), temperature, material; any other dataset in /particles is accepted too
@@ -370,6 +375,79 @@ def plot_gas_energy(outdir, summary):
     return out
 
 
+def plot_burst(outdir, summary):
+    """The last particle output over the gas pressure of the same step."""
+    ppath, _ = last_particle_file(outdir)
+    step = int(re.fullmatch(r"particles_(\d+)\.h5", os.path.basename(ppath)).group(1))
+    gpath = os.path.join(outdir, "gas_%06d.h5" % step)
+    if not os.path.exists(gpath):
+        return None
+    data, time, _ = read_particles(ppath)
+    x = data["coordinates"]
+    n, dim = x.shape
+    with h5py.File(gpath, "r") as h:
+        p = np.asarray(h["cells"]["pressure"])
+    p = p[p.shape[0] // 2] if p.shape[0] > 1 else p[0]
+    lower = summary.get("grid_lower", [0, 0, 0])
+    upper = summary.get("grid_upper", [p.shape[1], p.shape[0], 1])
+    fig, ax = plt.subplots(figsize=(7.5, 6.5), dpi=DPI)
+    im = ax.imshow(p, origin="lower", extent=[lower[0], upper[0], lower[1], upper[1]], cmap="Blues",
+                   norm=colors.LogNorm(vmin=max(p.min(), 1e3), vmax=max(p.max(), 1e4)), interpolation="nearest")
+    cax = make_axes_locatable(ax).append_axes("right", size="4%", pad=0.05)
+    fig.colorbar(im, cax=cax, label="gas pressure [Pa]")
+    frag = as_rows(data["fragment"], n)[:, 0] if "fragment" in data else np.full(n, -1)
+    if dim == 3:  # the slab around mid-z
+        z = x[:, 2]
+        keep = np.abs(z - 0.5 * (lower[2] + upper[2])) <= 0.5 * (upper[2] - lower[2]) / max(p.shape[0], 1) * 2
+        x, frag = x[keep], frag[keep]
+    size = 4.0 * (72.0 / DPI) ** 2 * 30
+    broken = frag < 0
+    ax.scatter(x[broken, 0], x[broken, 1], s=size * 0.5, c="0.6", linewidths=0, label="failed or not counted")
+    labels = frag[~broken]
+    if labels.size:
+        ax.scatter(x[~broken, 0], x[~broken, 1], s=size, c=labels % 20, cmap="tab20", vmin=0, vmax=19, linewidths=0)
+    ax.set_xlim(lower[0], upper[0])
+    ax.set_ylim(lower[1], upper[1])
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    count = summary.get("fragment_count")
+    ax.set_title("%s: t = %.4g s%s" % (summary.get("scene") or "", time, "" if count is None else ", %d fragments" % count), fontsize=11)
+    out = os.path.join(outdir, "burst.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
+def plot_histories(outdir, summary):
+    """Largest gas pressure and the container's expansion velocity against time."""
+    table = np.atleast_1d(np.genfromtxt(os.path.join(outdir, "monitor.csv"), delimiter=",", names=True))
+    if "gas_max_pressure" not in table.dtype.names:
+        return None
+    t = table["time"] * 1e6
+    has_v = "expansion_velocity" in table.dtype.names
+    fig, axes = plt.subplots(2 if has_v else 1, 1, sharex=True, figsize=(7.5, 6.0 if has_v else 3.5), dpi=DPI, squeeze=False)
+    axes = axes[:, 0]
+    axes[0].semilogy(t, np.maximum(table["gas_max_pressure"], 1.0), color="tab:red")
+    axes[0].set_ylabel("largest cell pressure [Pa]")
+    if has_v:
+        axes[1].plot(t, table["expansion_velocity"], color="tab:blue")
+        axes[1].set_ylabel("mean radial velocity [m/s]")
+        ft = summary.get("fracture_time")
+        if ft is not None and ft >= 0:
+            for a in axes:
+                a.axvline(ft * 1e6, color="0.4", ls="--", lw=0.8)
+            axes[1].text(ft * 1e6, axes[1].get_ylim()[1] * 0.9, " first failure", fontsize=8, color="0.3")
+    axes[-1].set_xlabel("time [µs]")
+    for a in axes:
+        a.grid(True, alpha=0.3)
+    axes[0].set_title("%s: gas pressure and wall velocity" % (summary.get("scene") or ""), fontsize=11)
+    out = os.path.join(outdir, "histories.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
 def plot_fragment_masses(outdir, summary):
     """Mass distribution of the fragments (fragments.csv): mass of each fragment, largest first."""
     path = os.path.join(outdir, "fragments.csv")
@@ -427,6 +505,10 @@ def main(argv=None):
         png = plot_fragment_masses(outdir, summary)
         if png:
             print("wrote %s" % png)
+    if gas_png:
+        for png in (plot_burst(outdir, summary), plot_histories(outdir, summary)):
+            if png:
+                print("wrote %s" % png)
     png, problem = plot_energy(outdir, summary)
     if png is None:
         print("plot_run.py: warning: energy.png not written: %s" % problem, file=sys.stderr)

@@ -220,6 +220,8 @@ PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_c
 // Fragments (src/fragments.cxx)
 PetscErrorCode FragmentsSetUp(Simulation &sim);
 PetscErrorCode FragmentsMonitor(Simulation &sim);
+// The mean radial velocity of the fragments' materials about the -grady axis (enabled: -grady is on).
+PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity);
 PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table);
 PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out);
 bool           SwarmHasModelField(const Simulation &sim, const char name[]);

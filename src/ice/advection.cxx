@@ -240,14 +240,18 @@ PetscErrorCode IceAdvect(IceSolver &ice)
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
         c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + 0.5 * u2 / ice.materials[m].eos->cv;
       }
-  const PetscInt nq = dim + 1; // velocity components, then energy (or temperature)
+  // velocity components, then energy (or temperature); with total energy also the temperature, the
+  // dual-energy fallback where the kinetic energy is nearly all of it (Bryan et al., Comput. Phys.
+  // Commun. 89 (1995) 149): there E - |u|^2/2 is a small difference of large numbers
+  const PetscInt nq = dim + (total ? 2 : 1);
   ice.work_advect.resize((size_t)nlocal * (nq + 1));
-  PetscReal *outs[5];
+  PetscReal *outs[6];
   for (PetscInt q = 0; q <= nq; ++q) outs[q] = ice.work_advect.data() + (size_t)q * nlocal;
   for (PetscInt m = 0; m < ice.ngas; ++m) { // solids are not advected: the particles carry them
-    PetscInt q_fields[4];
+    PetscInt q_fields[5];
     for (PetscInt d = 0; d < dim; ++d) q_fields[d] = ice.Offset(m, icef::vel_L + d);
     q_fields[dim] = ice.Offset(m, total ? icef::energy_L : icef::temp_L);
+    if (total) q_fields[dim + 1] = ice.Offset(m, icef::temp_L);
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
     const PetscReal cv = ice.materials[m].eos->cv;
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -266,7 +270,12 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           }
           PetscReal T = (rho_L * c[q_fields[dim]] + outs[1 + dim][idx]) / rho;
           if (total) {
+            const PetscReal E = T; // specific total energy / c_v
             T -= 0.5 * u2 / cv;
+            if (!(T > ice.dual_energy_fraction * E)) { // the internal-energy remap instead
+              T = (rho_L * c[q_fields[dim + 1]] + outs[2 + dim][idx]) / rho;
+              ++ice.energy_fallbacks;
+            }
             if (!(T > 0) && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) T = c[ice.Offset(m, icef::temp_L)];
           }
           if (!bad && !(T > 0)) bad = "temperature";

@@ -9,7 +9,7 @@ namespace burst {
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
 {
   PetscScalar *a;
-  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6];
+  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6], pmax = 0;
   PetscFunctionBeginUser;
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscReal V = ice.CellVolume();
@@ -17,6 +17,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        pmax                 = PetscMax(pmax, c[ice.CellOffset(icef::press)]);
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           const PetscReal M = c[ice.Offset(m, icef::rho)] * V;
           PetscReal       u2 = 0;
@@ -32,6 +33,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCallMPI(MPI_Allreduce(local, global, 6, MPIU_REAL, MPI_SUM, ice.comm));
+  PetscCallMPI(MPI_Allreduce(&pmax, &t.max_pressure, 1, MPIU_REAL, MPI_MAX, ice.comm));
   t.mass = global[0];
   for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
   t.internal_energy = global[4];

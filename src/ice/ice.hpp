@@ -78,6 +78,7 @@ struct IceFaceBC {
 
 struct IceTotals {
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, internal_energy = 0, kinetic_energy = 0;
+  PetscReal max_pressure = 0; // Pa, over the cells
 };
 
 struct IceSolver {
@@ -137,7 +138,9 @@ struct IceSolver {
   PetscInt  step = 0;
   PetscInt  ksp_iterations = 0, outer_iterations = 0; // of the last step
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
-  PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy (this rank)
+  PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy or the internal-energy remap (this rank)
+  PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
+  PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
 
   PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;

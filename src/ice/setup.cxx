@@ -86,6 +86,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCall(PetscOptionsBool("-ice_compatible_fluxes", "Second order: compatible fluxes for velocity, temperature and specific volume (VanderHeyden & Kashiwa 1998)", "", ice.compatible_fluxes, &ice.compatible_fluxes, nullptr));
   PetscCall(PetscOptionsBool("-ice_conservative_energy", "Lagrangian energy from the work of the face pressures minus the kinetic energy gained (conserves total energy), instead of the reference's -p dV form", "", ice.conservative_energy, &ice.conservative_energy, nullptr));
   PetscCall(PetscOptionsBool("-ice_advect_total_energy", "Advect total energy c_v T + |u|^2/2 instead of c_v T, so the kinetic energy the remap averages away becomes heat (the reference advects c_v T only)", "", ice.advect_total_energy, &ice.advect_total_energy, nullptr));
+  PetscCall(PetscOptionsReal("-ice_dual_energy_fraction", "With total-energy advection: where the internal energy left is below this fraction of the total, take the separately remapped internal energy instead (dual energy; counted in energy_fallbacks), in [0, 1)", "", ice.dual_energy_fraction, &ice.dual_energy_fraction, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_dual_energy_fraction", ice.dual_energy_fraction, 0, 1, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_cfl", "Gas Courant number: dt = cfl min_d h_d/(k c + |u_d|), in (0, 1]", "", ice.cfl, &ice.cfl, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_cfl", ice.cfl, 0, 1, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-ice_sound_speed_knob", "k in the gas CFL, in [0, 1]; default 1 explicit, 0.5 semi-implicit", "", ice.sound_speed_knob, &ice.sound_speed_knob, &set));

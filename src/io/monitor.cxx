@@ -146,6 +146,9 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   if (sim.track_by_point) PetscCall(NearestParticle(sim));
   PetscCall(ComputeEnergies(sim, r));
   sim.diag.initial_energy = r.total - r.external_work;
+  PetscBool expansion = PETSC_FALSE; // the -grady cylinder's mean radial velocity gets a column
+  PetscReal velocity;
+  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &velocity));
   if (!sim.rank) {
     const std::string path = sim.output_dir + "/monitor.csv";
     csv                    = std::fopen(path.c_str(), "w");
@@ -153,7 +156,8 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy,plastic_work,heat,viscous_work,stored_elastic,unaccounted");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
-    if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations");
+    if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure");
+    if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
@@ -187,6 +191,13 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
   IceTotals gas;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
+  if (sim.ice && gas.max_pressure > sim.ice->peak_pressure) {
+    sim.ice->peak_pressure      = gas.max_pressure;
+    sim.ice->peak_pressure_time = sim.time;
+  }
+  PetscBool expansion = PETSC_FALSE;
+  PetscReal expansion_velocity = 0;
+  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &expansion_velocity));
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && csv) {
@@ -197,6 +208,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
     if (sim.ice)
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy, (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
+    if (sim.ice) std::fprintf(csv, ",%.12e", (double)gas.max_pressure);
+    if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
     std::fflush(csv);
   }
@@ -274,6 +287,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"internal_energy\": " << gas.internal_energy << ", \"kinetic_energy\": " << gas.kinetic_energy << ", \"total_energy\": " << e << ", \"total_energy_change\": " << (e - e0) / e0;
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
     const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
+    s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }

@@ -81,6 +81,8 @@ struct FragmentOptions {
   PetscReal distance_factor = 1.5;
   PetscInt  min_particles   = 4;
   PetscReal min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
+  std::vector<char> counted;         // per material: part of the fragments (-fragments_materials; empty: all)
+  bool      Counts(PetscInt material) const { return counted.empty() || counted[material]; }
   // Grady-Hightower (eqs. 25-26)
   PetscBool grady = PETSC_FALSE;
   PetscReal center[3] = {0, 0, 0}, radius = 0, sector = 360;
@@ -103,6 +105,26 @@ PetscErrorCode FragmentsSetUp(Simulation &sim)
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", options.min_particles, &options.min_particles, nullptr));
   PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", options.min_mass_fraction, &options.min_mass_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-fragments_min_mass_fraction", options.min_mass_fraction, 0, 1, PETSC_FALSE));
+  {
+    char     *names[32];
+    PetscInt  n = 32;
+    PetscBool set;
+    PetscCall(PetscOptionsStringArray("-fragments_materials", "Materials whose particles make the fragments and the expansion velocity (e.g. the container, not its filling); default all", "", names, &n, &set));
+    if (set) {
+      options.counted.assign(sim.materials.size(), 0);
+      for (PetscInt i = 0; i < n; ++i) {
+        PetscInt found = -1;
+        std::string valid;
+        for (size_t m = 0; m < sim.materials.size(); ++m) {
+          valid += (m ? ", " : "") + std::string(sim.materials[m]->Name());
+          if (sim.materials[m]->Name() == std::string(names[i])) found = (PetscInt)m;
+        }
+        PetscCheck(found >= 0 || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Option -fragments_materials: '%s' is not one of -materials (%s)", names[i], valid.c_str());
+        if (found >= 0) options.counted[found] = 1;
+        PetscCall(PetscFree(names[i]));
+      }
+    }
+  }
   PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", options.grady, &options.grady, nullptr));
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", options.center, sim.grid.dim, nullptr));
   PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", options.radius, &options.radius, nullptr));
@@ -145,23 +167,25 @@ static void GradyEnergies(PetscReal &tension, PetscReal &shear)
 // Eq. 25: N = 2 pi (rho R0 V^2 / (24 Gamma))^(1/3) for the whole cylinder.
 static PetscReal GradyCount(PetscReal gamma, PetscReal velocity) { return 2 * PETSC_PI * std::cbrt(options.density * options.radius * velocity * velocity / (24 * gamma)); }
 
-// Records the mean radial velocity of the material (mass weighted) when the first particle fails.
-PetscErrorCode FragmentsMonitor(Simulation &sim)
+// The mass-weighted mean radial velocity about the Grady axis of the counted materials, and the
+// number of their failed particles.
+static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, PetscReal *failed_count)
 {
-  PetscFunctionBeginUser;
-  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, "failed")) PetscFunctionReturn(PETSC_SUCCESS);
   SwarmAccess      fields(sim.swarm);
-  const PetscInt  *failed;
+  const PetscInt  *failed = nullptr, *material;
   const PetscReal *x, *v, *m;
   PetscInt         n, dim = sim.grid.dim;
   PetscReal        local[3] = {0, 0, 0}, global[3];
+  PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  PetscCall(fields.Get("failed", &failed));
+  if (SwarmHasModelField(sim, "failed")) PetscCall(fields.Get("failed", &failed));
+  PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::mass, &m));
   for (PetscInt p = 0; p < n; ++p) {
-    if (failed[p]) local[2] += 1;
+    if (!options.Counts(material[p])) continue;
+    if (failed && failed[p]) local[2] += 1;
     PetscReal r = 0, vr = 0;
     for (PetscInt d = 0; d < 2; ++d) r += (x[dim * p + d] - options.center[d]) * (x[dim * p + d] - options.center[d]);
     r = std::sqrt(r);
@@ -172,11 +196,32 @@ PetscErrorCode FragmentsMonitor(Simulation &sim)
   }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 3, MPIU_REAL, MPI_SUM, sim.comm));
-  if (global[2] > 0) {
-    fracture_velocity = global[0] / global[1];
+  *velocity = global[1] > 0 ? global[0] / global[1] : 0;
+  if (failed_count) *failed_count = global[2];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Records the mean radial velocity of the material (mass weighted) when the first particle fails.
+PetscErrorCode FragmentsMonitor(Simulation &sim)
+{
+  PetscReal velocity, failed;
+  PetscFunctionBeginUser;
+  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, "failed")) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MeanRadialVelocity(sim, &velocity, &failed));
+  if (failed > 0) {
+    fracture_velocity = velocity;
     fracture_time     = sim.time;
     PetscCall(PetscInfo(sim.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)sim.time, (double)fracture_velocity));
   }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity)
+{
+  PetscFunctionBeginUser;
+  *enabled  = options.grady;
+  *velocity = 0;
+  if (options.grady) PetscCall(MeanRadialVelocity(sim, velocity, nullptr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -189,9 +234,10 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   const bool       has_failed = SwarmHasModelField(sim, "failed");
   SwarmAccess      fields(sim.swarm);
   const PetscReal *x, *v, *m, *V;
-  const PetscInt  *failed = nullptr;
+  const PetscInt  *failed = nullptr, *material;
   PetscInt        *fragment;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::mass, &m));
@@ -205,7 +251,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   PetscReal              s_max = 0;
   for (PetscInt p = 0; p < n; ++p) {
     fragment[p] = -1;
-    if (failed && failed[p]) continue;
+    if ((failed && failed[p]) || !options.Counts(material[p])) continue;
     intact.push_back(p);
     size[p] = std::pow(V[p], 1.0 / dim);
     s_max   = PetscMax(s_max, size[p]);
@@ -320,7 +366,8 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
     }
   }
   PetscReal mass_local = 0, mass_total = 0;
-  for (PetscInt p = 0; p < n; ++p) mass_local += m[p];
+  for (PetscInt p = 0; p < n; ++p)
+    if (options.Counts(material[p])) mass_local += m[p];
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, sim.comm));
   PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, sim.comm));
