@@ -363,7 +363,18 @@ public:
         Ddev.diagonal().array() -= c.trace_D[k] / 3;
         s += 2 * c.shear_modulus[k] * dt * Ddev;
       }
-      // 4. yield test and return mapping (flow model inlined)
+      // 4. yield test and return mapping (flow model inlined). A failed point with a response keeps
+      // at most its pressure: it takes no trial deviator and its voids no longer grow, so it goes
+      // through the return as a dense elastic point (a swollen fragment at porosity 1 in tension
+      // would otherwise ask GTN for a return that does not exist); its porosity is restored after.
+      PetscReal failed_porosity[kChunk];
+      if (failure_response != FailureResponse::None)
+        for (int k = 0; k < c.n; ++k)
+          if (failed[c.index[k]]) {
+            Mat3Map(c.deviator[k]).setZero();
+            failed_porosity[k] = c.porosity[k];
+            c.porosity[k]      = 0;
+          }
       {
         c.failed_point            = -1;
         const PetscErrorCode ierr = flow->Return(c, settings);
@@ -373,6 +384,9 @@ public:
         }
         PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
       }
+      if (failure_response != FailureResponse::None)
+        for (int k = 0; k < c.n; ++k)
+          if (failed[c.index[k]]) c.porosity[k] = failed_porosity[k];
       // 5. porosity, temperature, triaxiality; then damage and stability
       PetscReal porosity_old[kChunk], plastic_work[kChunk];
       for (int k = 0; k < c.n; ++k) porosity_old[k] = c.porosity[k];
@@ -393,7 +407,10 @@ public:
         // heating nor the isentropic cooling -Gamma T tr(D) dt, which would take a failed fragment
         // that swells freely from 600 K to a few kelvin; its temperature stays as it failed, with or
         // without a gas around it (the coupling takes its mass and temperature, never its volume).
-        const bool inert = failure_response == FailureResponse::ZeroStress && failed[c.index[k]];
+        // The same holds for no_tension while the point opens (it carries no pressure then) and for
+        // every response's deviator; a failed point still heats when it is compressed under pressure.
+        const bool holds_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && c.trace_D[k] < 0);
+        const bool inert          = failure_response != FailureResponse::None && failed[c.index[k]] && !holds_pressure;
         if (adiabatic && !inert) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
         c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
       }

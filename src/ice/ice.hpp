@@ -104,6 +104,7 @@ struct IceSolver {
   PetscReal dt_fixed = 0;            // -ice_dt
   PetscReal rho_tiny = 1e-12;        // fraction of the material density kept where it is absent
   PetscReal trace_fraction = 1e-6;   // a gas below this volume fraction is a trace: no compression work, not in the CFL
+  PetscReal cfl_min_fraction = 0;    // a gas below this volume fraction sets the step by its speed, not its sound speed
   PetscReal outer_tolerance = 1e-8;  // semi-implicit: max |residual| / V over cells
   PetscInt  outer_max_iterations = 20;
   PetscInt  equilibration_max_iterations = 100;

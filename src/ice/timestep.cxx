@@ -23,9 +23,12 @@ PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt m = 0; m < ice.ngas; ++m) { // the MPM limit covers the solids (ice.md 7.5)
-          if (c[ice.Offset(m, icef::theta)] < ice.trace_fraction) continue; // a trace does not set the step
+          const PetscReal theta = c[ice.Offset(m, icef::theta)];
+          if (theta < ice.trace_fraction) continue; // a trace does not set the step
+          // a minor gas (a pocket in a solid's cell) sets it through its speed only: its sound speed
+          // is not the cell's (sum theta kappa is the solid's there, ice.md 7.5)
           const PetscReal rho_micro = 1 / c[ice.Offset(m, icef::spvol)];
-          const PetscReal sound     = std::sqrt(ice.materials[m].eos->SoundSpeed2(rho_micro, c[ice.Offset(m, icef::temp)]));
+          const PetscReal sound     = theta < ice.cfl_min_fraction ? 0 : std::sqrt(ice.materials[m].eos->SoundSpeed2(rho_micro, c[ice.Offset(m, icef::temp)]));
           for (PetscInt d = 0; d < ice.dim; ++d) local = PetscMin(local, ice.h[d] / (ice.sound_speed_knob * sound + std::fabs(c[ice.Offset(m, icef::vel + d)]) + 1e-300));
         }
       }
