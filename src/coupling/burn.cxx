@@ -7,11 +7,14 @@
 // momentum dm u_s and the energy dm (c_v,s T_s + Q); the solid loses the mass, its momentum and its
 // energy; the pressure equation sees the volume that the conversion creates. On the particle side
 // each reactant particle loses the burnt fraction of its cell's solid (through the nodes), and a
-// particle below -coupling_burnout_fraction of its seeded mass is removed and counted.
+// particle below -coupling_burnout_fraction of its seeded mass, or a burning one crushed below
+// -coupling_burnout_volume_ratio of its volume (det F), burns out: what is left of it goes to the
+// product gas of its cell and the particle is removed and counted.
 #include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
 #include "../util.hpp"
+#include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
 namespace burst {
@@ -27,6 +30,8 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", c.burnout, &c.burnout, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_burnout_fraction", c.burnout, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A burning particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", c.burnout_volume_ratio, &c.burnout_volume_ratio, nullptr));
+  PetscCall(CheckRange(sim.comm, "-coupling_burnout_volume_ratio", c.burnout_volume_ratio, 0, 1, PETSC_FALSE));
   PetscOptionsEnd();
   bool any = false;
   for (size_t m = 0; m < sim.materials.size(); ++m) {
@@ -89,11 +94,12 @@ PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt6
 
 PetscErrorCode CouplingBurnHelp(Simulation &sim)
 {
-  PetscReal burnout = 1e-3;
+  PetscReal burnout = 1e-3, volume_ratio = 0.5;
   char      product[256] = "";
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", burnout, &burnout, nullptr));
+  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A burning particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", volume_ratio, &volume_ratio, nullptr));
   PetscOptionsEnd();
   for (const auto &mat : sim.materials) {
     BurnModel        *model;
@@ -249,7 +255,8 @@ namespace {
 // Nodal burnt fraction -> reactant particles: mass, volumes and energy scale with the mass left.
 struct BurnParticles {
   Simulation        &sim;
-  const Coupling    &c;
+  Coupling          &c;
+  IceSolver         &ice;
   const PetscScalar *phi; // per node, per solid
   std::vector<char> &remove;
   template <int DIM, ShapeType S>
@@ -260,7 +267,7 @@ struct BurnParticles {
     PetscInt             n;
     const PetscReal     *x, *hw, *F;
     PetscReal           *mass, *vol, *vol0, *energy;
-    const PetscReal     *v;
+    const PetscReal     *v, *T;
     const PetscInt      *material;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
@@ -275,6 +282,8 @@ struct BurnParticles {
     PetscCall(fields.Get(field::internal_energy, &energy));
     PetscCall(fields.Get(field::material, &material));
     PetscCall(fields.Get(field::velocity, &v));
+    PetscCall(fields.Get(field::temperature, &T));
+    const PetscReal V = ice.CellVolume();
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       const PetscInt s = c.solid_of[material[p]];
@@ -293,7 +302,26 @@ struct BurnParticles {
       vol[p] *= keep;
       vol0[p] *= keep;
       energy[p] *= keep;
-      if (mass[p] < c.burnout * c.seed_mass[s]) remove[p] = 1;
+      const PetscReal J = Mat3CMap(F + 9 * p).determinant();
+      if (mass[p] < c.burnout * c.seed_mass[s] || J < c.burnout_volume_ratio) {
+        // burnt out: the rest burns into the product in the particle's cell (ice.md 2.4's bookkeeping)
+        remove[p] = 1;
+        PetscInt ijk[3] = {0, 0, 0};
+        for (int d = 0; d < DIM; ++d) ijk[d] = PetscMin(PetscMax((PetscInt)std::floor((x[DIM * p + d] - ice.lower[d]) / ice.h[d]), ice.xs[d]), ice.xs[d] + ice.xm[d] - 1);
+        const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), nm = ice.nmat, m = c.first + s, gas = c.product[s];
+        const PetscReal dr = mass[p] / V, cv = ice.materials[m].eos->cv;
+        ice.mass_source[idx * nm + m] -= dr;
+        ice.mass_source[idx * nm + gas] += dr;
+        for (int d = 0; d < DIM; ++d) {
+          ice.momentum_source[(idx * nm + m) * 3 + d] -= dr * v[DIM * p + d];
+          ice.momentum_source[(idx * nm + gas) * 3 + d] += dr * v[DIM * p + d];
+        }
+        ice.energy_source[idx * nm + m] -= dr * cv * T[p];
+        ice.energy_source[idx * nm + gas] += dr * (cv * T[p] + c.burn[s]->HeatOfReaction());
+        c.burnt_mass += mass[p];
+        sim.diag.removed_mass += mass[p];
+        sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
+      }
     }
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -335,7 +363,7 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   std::vector<char> &remove = c.burnt_out;
   const PetscScalar *phil;
   PetscCall(VecGetArrayRead(local, &phil));
-  BurnParticles kernel{sim, c, phil, remove};
+  BurnParticles kernel{sim, c, ice, phil, remove};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(local, &phil));
   PetscInt64 removed = 0;

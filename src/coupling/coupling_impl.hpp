@@ -27,6 +27,7 @@ struct Coupling {
   std::vector<PetscReal>                  seed_mass;
   std::vector<PetscReal>                  burnt_fraction;
   PetscReal                               burnout = 1e-3; // a particle below this fraction of its seeded mass is removed
+  PetscReal                               burnout_volume_ratio = 0.5; // a burning particle crushed below this det F burns out
   PetscReal                               burnt_mass = 0; // kg converted to gas so far (this rank)
   PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
   std::vector<char>                       burnt_out;           // per local particle, reused every step
