@@ -14,6 +14,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "mpm/geometry.hpp"
 #include "mpm/analytic.hpp"
 #include "util.hpp"
+#include "options_check.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include "../models/burn/burn.hpp"
@@ -159,6 +160,7 @@ int main(int argc, char **argv)
     PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
     PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
     PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
+    PetscCall(OptionsCheckBegin(sim.comm)); // records what set-up reads, for the unused-option check
     int mode = 0;
     PetscOptionsBegin(sim.comm, "", "burst", "Mode");
     PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
@@ -168,6 +170,7 @@ int main(int argc, char **argv)
     else {
       PetscCall(SetUp(sim));
       if (!sim.help) {
+        PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
         PetscCall(View(sim));
         PetscCall(Run(sim));
       }
