@@ -114,12 +114,17 @@ PetscErrorCode CreateRootVec(const Simulation &sim, PetscInt n, const char name[
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const char name[], const std::vector<PetscReal> &values)
+// Writes rank 0's values (the other ranks' are ignored); nothing when rank 0 has none.
+PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const char name[], const std::vector<PetscReal> &values, PetscInt *count = nullptr)
 {
   Vec          v;
   PetscScalar *a;
+  PetscInt     n = (PetscInt)values.size();
   PetscFunctionBeginUser;
-  PetscCall(CreateRootVec(sim, (PetscInt)values.size(), name, &v));
+  PetscCallMPI(MPI_Bcast(&n, 1, MPIU_INT, 0, sim.comm)); // only rank 0 holds the records
+  if (count) *count = n;
+  if (!n) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CreateRootVec(sim, n, name, &v));
   PetscCall(VecGetArray(v, &a));
   if (!sim.rank)
     for (size_t i = 0; i < values.size(); ++i) a[i] = values[i];
@@ -452,12 +457,14 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscCall(WriteRootValues(sim, viewer, "rank_values", ranks));
   std::vector<PetscReal> flat;
   for (const auto &r : OutputRecords()) flat.insert(flat.end(), r.begin(), r.end());
-  const PetscInt nrec = (PetscInt)flat.size() / 3;
-  if (nrec) PetscCall(WriteRootValues(sim, viewer, "output_records", flat));
+  PetscInt nrec;
+  PetscCall(WriteRootValues(sim, viewer, "output_records", flat, &nrec));
+  nrec /= 3;
   flat.clear();
   for (const auto &r : GasOutputRecords()) flat.insert(flat.end(), r.begin(), r.end());
-  const PetscInt ngas = (PetscInt)flat.size() / 2;
-  if (ngas) PetscCall(WriteRootValues(sim, viewer, "gas_records", flat));
+  PetscInt ngas;
+  PetscCall(WriteRootValues(sim, viewer, "gas_records", flat, &ngas));
+  ngas /= 2;
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   // what a restart checks
   const std::string solids = SolidNames(sim), gases = GasNames(sim);
@@ -578,6 +585,13 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+static std::string WallMessage()
+{
+  char text[128];
+  std::snprintf(text, sizeof(text), "the wall-clock budget -max_wall_time %g s is nearly spent", (double)opts.max_wall_time);
+  return text;
+}
+
 PetscErrorCode CheckpointAfterStep(Simulation &sim, PetscBool *stop)
 {
   PetscLogDouble now;
@@ -596,7 +610,7 @@ PetscErrorCode CheckpointAfterStep(Simulation &sim, PetscBool *stop)
   if (due || global[0] || global[1]) PetscCall(CheckpointWrite(sim));
   if (global[0] || global[1]) {
     *stop = PETSC_TRUE;
-    const std::string why = global[0] ? std::string("signal ") + (global[0] == SIGTERM ? "SIGTERM" : global[0] == SIGUSR1 ? "SIGUSR1" : std::to_string(global[0])) + " received" : "the wall-clock budget -max_wall_time " + std::to_string(opts.max_wall_time) + " s is nearly spent";
+    const std::string why = global[0] ? std::string("signal ") + (global[0] == SIGTERM ? "SIGTERM" : global[0] == SIGUSR1 ? "SIGUSR1" : std::to_string(global[0])) + " received" : WallMessage();
     PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s. Wrote %s; continue with -restart %s\n", sim.step, (double)sim.time, why.c_str(), CheckpointName(sim, sim.step).c_str(), sim.output_dir.c_str()));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
