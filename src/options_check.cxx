@@ -133,10 +133,71 @@ std::string Suggestions(const std::string &name, const std::set<std::string> &ca
 }
 } // namespace
 
-PetscErrorCode OptionsCheckBegin(MPI_Comm)
+namespace {
+// Option values as given: name -> value (PetscOptionsGetAll's "-name value -name ..." text).
+std::vector<std::pair<std::string, std::string>> GivenOptions()
+{
+  std::vector<std::pair<std::string, std::string>> out;
+  char *all = nullptr;
+  if (PetscOptionsGetAll(nullptr, &all)) return out;
+  const std::string s(all);
+  PetscFree(all);
+  size_t pos = 0;
+  while (pos < s.size()) {
+    const size_t start = s.find_first_not_of(' ', pos);
+    if (start == std::string::npos) break;
+    const size_t end = std::min(s.find(' ', start), s.size());
+    const std::string token = s.substr(start, end - start);
+    if (token.size() > 1 && token[0] == '-' && std::isalpha((unsigned char)token[1])) out.push_back({token, ""});
+    else if (!out.empty()) out.back().second += (out.back().second.empty() ? "" : " ") + token;
+    pos = end;
+  }
+  return out;
+}
+
+// PETSc's own parse errors ("Input string abc has no numeric value") do not say which option held the
+// string: this handler finds the options whose value contains it and adds their names to the message.
+PetscErrorCode NameTheOption(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  char bad[256];
+  if (p == PETSC_ERROR_INITIAL && mess && std::sscanf(mess, "Input string %255s has no", bad) == 1) {
+    std::string names;
+    for (const auto &o : GivenOptions()) {
+      std::string v = "," + o.second + ",";
+      for (char &c : v)
+        if (c == ' ') c = ',';
+      if (v.find("," + std::string(bad) + ",") != std::string::npos) names += (names.empty() ? "" : ", ") + o.first;
+    }
+    if (!names.empty()) {
+      char text[1024];
+      std::snprintf(text, sizeof(text), "Option %s: the value '%s' is not a valid number (%s)", names.c_str(), bad, mess);
+      return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, text, ctx);
+    }
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+} // namespace
+
+PetscErrorCode OptionsCheckBegin(MPI_Comm comm)
 {
   PetscBool help;
   PetscFunctionBeginUser;
+  PetscCall(PetscPushErrorHandler(NameTheOption, nullptr));
+  // No burst option takes NaN or infinity; PETSc would parse them as numbers and set-up would carry them on.
+  for (const auto &o : GivenOptions()) {
+    std::string v = o.second;
+    for (char &c : v) c = (char)std::tolower((unsigned char)c);
+    for (char &c : v)
+      if (c == ',') c = ' ';
+    std::string part;
+    for (size_t i = 0; i <= v.size(); ++i) {
+      if (i == v.size() || v[i] == ' ') {
+        const std::string t = part.size() && (part[0] == '-' || part[0] == '+') ? part.substr(1) : part;
+        PetscCheck(t != "nan" && t != "inf" && t != "infinity", comm, PETSC_ERR_USER_INPUT, "Option %s = %s: burst takes no NaN or infinite values", o.first.c_str(), o.second.c_str());
+        part.clear();
+      } else part += v[i];
+    }
+  }
   PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) PetscFunctionReturn(PETSC_SUCCESS);
   known.clear();
