@@ -277,11 +277,31 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
       pos = end;
     }
   }
+  // A parameter of a sub-model that this run does not select (material files carry the parameters
+  // of alternatives: -steel_eos_C0 with -steel_eos_type hypoelastic) is noted, naming the selector,
+  // unless a known name is within 2 edits (then it is taken for a typo).
+  std::vector<std::string> errors;
   for (const std::string &u : unused) {
+    size_t nearest = std::string::npos;
+    for (const std::string &c : candidates) nearest = std::min(nearest, EditDistance(u, c));
+    std::string selector;
+    for (const std::string &c : known) {
+      const size_t cut = c.size() >= 6 && c.compare(c.size() - 5, 5, "_type") == 0 ? c.size() - 4 : (c.size() >= 7 && c.compare(c.size() - 6, 6, "_types") == 0 ? c.size() - 5 : 0);
+      if (cut && u.size() > cut && u.compare(0, cut, c, 0, cut) == 0 && c.size() > selector.size()) selector = c;
+    }
+    if (!selector.empty() && nearest > 2) {
+      char     value[256] = "";
+      PetscBool set       = PETSC_FALSE;
+      PetscCall(PetscOptionsGetString(nullptr, nullptr, ("-" + selector).c_str(), value, sizeof(value), &set));
+      PetscCall(PetscPrintf(comm, "Note: option -%s is not read by the model this run selects (-%s%s%s); ignored\n", u.c_str(), selector.c_str(), set ? " " : "", set ? value : " default"));
+      continue;
+    }
+    errors.push_back(u);
     const std::string near = Suggestions(u, candidates);
     if (near.empty()) PetscCall(PetscPrintf(comm, "Unknown option -%s; nothing reads it and no known option is close\n", u.c_str()));
     else PetscCall(PetscPrintf(comm, "Unknown option -%s; did you mean %s?\n", u.c_str(), near.c_str()));
   }
+  unused = errors;
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
   if (unused.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   if (allow) {
