@@ -182,7 +182,8 @@ PetscErrorCode OptionsCheckBegin(MPI_Comm comm)
 {
   PetscBool help;
   PetscFunctionBeginUser;
-  PetscCall(PetscPushErrorHandler(NameTheOption, nullptr));
+  PetscCall(PetscOptionsHasHelp(nullptr, &help));
+  if (!help) PetscCall(PetscPushErrorHandler(NameTheOption, nullptr)); // popped by OptionsCheckEnd
   // No burst option takes NaN or infinity; PETSc would parse them as numbers and set-up would carry them on.
   for (const auto &o : GivenOptions()) {
     std::string v = o.second;
@@ -198,7 +199,6 @@ PetscErrorCode OptionsCheckBegin(MPI_Comm comm)
       } else part += v[i];
     }
   }
-  PetscCall(PetscOptionsHasHelp(nullptr, &help));
   if (help) PetscFunctionReturn(PETSC_SUCCESS);
   known.clear();
   saved_help_printf = PetscHelpPrintf;
@@ -235,6 +235,7 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
   PetscFunctionBeginUser;
   if (!recording) PetscFunctionReturn(PETSC_SUCCESS);
   recording = false;
+  PetscCall(PetscPopErrorHandler()); // options are parsed during set-up; -on_error_* apply again from here
   PetscHelpPrintf = saved_help_printf;
   PetscVFPrintf   = saved_vfprintf;
   if (inserted_help) PetscCall(PetscOptionsClearValue(nullptr, "-help"));
