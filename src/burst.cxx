@@ -14,6 +14,8 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "mpm/geometry.hpp"
 #include "mpm/analytic.hpp"
 #include "util.hpp"
+#include "options_check.hpp"
+#include "io/checkpoint.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include "../models/burn/burn.hpp"
@@ -49,6 +51,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(PetscLogStagePush(sim.stage_setup));
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
+  PetscCall(CheckpointSetUp(sim));
   // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
   //    geometry objects that seed particles
   PetscCall(CreateMaterials(sim));
@@ -86,6 +89,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   // 5. Gas and particles meet (src/coupling/)
   if (sim.coupling) PetscCall(CouplingSetUp(sim));
   PetscCall(OutputSetUp(sim));
+  PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -125,10 +129,12 @@ static PetscErrorCode Run(Simulation &sim)
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   PetscCall(MonitorSetUp(sim));
-  PetscCall(Monitor(sim, PETSC_TRUE));
-  PetscCall(PetscLogStagePush(sim.stage_output));
-  PetscCall(WriteAllOutput(sim, false));
-  PetscCall(PetscLogStagePop());
+  if (!sim.restarted) { // a restart continues monitor.csv and the output series
+    PetscCall(Monitor(sim, PETSC_TRUE));
+    PetscCall(PetscLogStagePush(sim.stage_output));
+    PetscCall(WriteAllOutput(sim, false));
+    PetscCall(PetscLogStagePop());
+  }
   PetscCall(PetscTime(&sim.wall_start));
   while (sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps) {
     PetscCall(PetscTime(&t0));
@@ -146,6 +152,9 @@ static PetscErrorCode Run(Simulation &sim)
       PetscCall(WriteAllOutput(sim, last));
       PetscCall(PetscLogStagePop());
     }
+    PetscBool stop; // a checkpoint when due; stop on SIGTERM/SIGUSR1 or near -max_wall_time
+    PetscCall(CheckpointAfterStep(sim, &stop));
+    if (stop) break;
   }
   PetscCall(WriteSummary(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -159,6 +168,7 @@ int main(int argc, char **argv)
     PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
     PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
     PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
+    PetscCall(OptionsCheckBegin(sim.comm)); // records what set-up reads, for the unused-option check
     int mode = 0;
     PetscOptionsBegin(sim.comm, "", "burst", "Mode");
     PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
@@ -168,6 +178,7 @@ int main(int argc, char **argv)
     else {
       PetscCall(SetUp(sim));
       if (!sim.help) {
+        PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
         PetscCall(View(sim));
         PetscCall(Run(sim));
       }

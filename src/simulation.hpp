@@ -6,6 +6,7 @@
 #include "../models/material.hpp"
 #include <petscdmda.h>
 #include <petscdmswarm.h>
+#include <array>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -168,6 +169,7 @@ struct Simulation {
   // State
   PetscInt  step = 0;
   PetscReal time = 0, dt = 0;
+  PetscBool restarted = PETSC_FALSE; // state loaded from a checkpoint (-restart; src/io/checkpoint.cxx)
   PetscInt64 total_particles = 0; // global count, checked after every migration
   PetscInt64 next_pid = 0;        // next unused particle id (global)
   PetscInt64 particle_steps = 0;  // global sum over steps of the particle count
@@ -224,6 +226,8 @@ PetscErrorCode FragmentsMonitor(Simulation &sim);
 PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity);
 PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table);
 PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out);
+void           FragmentsGetState(PetscReal s[6]); // for the checkpoint
+void           FragmentsSetState(const PetscReal s[6]);
 bool           SwarmHasModelField(const Simulation &sim, const char name[]);
 PetscErrorCode RunPointDriver(Simulation &sim);
 
@@ -234,6 +238,13 @@ PetscErrorCode WriteGasOutput(Simulation &sim); // gas cells (gas_NNNNNN.h5, gas
 PetscErrorCode MonitorSetUp(Simulation &sim);
 PetscErrorCode Monitor(Simulation &sim, PetscBool force);
 PetscErrorCode WriteSummary(Simulation &sim);
+// State of the output series and monitor kept by src/io/, for the checkpoint (src/io/checkpoint.cxx).
+std::vector<std::array<PetscReal, 3>> OutputRecords();    // particles.xmf: step, time, particles
+void OutputSetRecords(const std::vector<std::array<PetscReal, 3>> &records);
+std::vector<std::array<PetscReal, 2>> GasOutputRecords(); // gas.xmf: step, time
+void GasOutputSetRecords(const std::vector<std::array<PetscReal, 2>> &records);
+PetscReal MonitorEnergyScale();
+void      MonitorSetEnergyScale(PetscReal scale);
 struct EnergyReport {
   PetscReal kinetic, internal, external_work, removed, total, balance_error;
   PetscReal failure_energy; // elastic energy released by failure responses (part of internal)

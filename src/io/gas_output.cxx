@@ -6,6 +6,7 @@
 #include "../ice/ice.hpp"
 #include "grid_output.hpp"
 #include <petscviewerhdf5.h>
+#include <array>
 #include <cstdio>
 #include <fstream>
 
@@ -32,6 +33,18 @@ std::vector<GridField> GasFields(const IceSolver &ice)
   return fields;
 }
 } // namespace
+
+std::vector<std::array<PetscReal, 2>> GasOutputRecords()
+{
+  std::vector<std::array<PetscReal, 2>> out;
+  for (const auto &r : gas_records) out.push_back({(PetscReal)r.step, r.time});
+  return out;
+}
+void GasOutputSetRecords(const std::vector<std::array<PetscReal, 2>> &in)
+{
+  gas_records.clear();
+  for (const auto &r : in) gas_records.push_back({(PetscInt)r[0], r[1]});
+}
 
 PetscErrorCode WriteGasOutput(Simulation &sim)
 {

@@ -9,6 +9,7 @@
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -139,17 +140,50 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscReal MonitorEnergyScale() { return energy_scale; }
+void      MonitorSetEnergyScale(PetscReal scale) { energy_scale = scale; }
+
+// A restarted run continues monitor.csv: the rows up to the checkpoint's step are kept (a killed run
+// may have written later ones), then new rows are appended.
+static PetscErrorCode ContinueMonitorFile(Simulation &sim, const std::string &path, bool *continued)
+{
+  PetscFunctionBeginUser;
+  *continued = false;
+  std::ifstream in(path);
+  if (!in) PetscFunctionReturn(PETSC_SUCCESS);
+  std::string header, line, kept;
+  if (!std::getline(in, header)) PetscFunctionReturn(PETSC_SUCCESS);
+  while (std::getline(in, line))
+    if (!line.empty() && std::atoll(line.c_str()) <= sim.step) kept += line + "\n";
+  in.close();
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp);
+    out << header << "\n" << kept;
+    PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
+  }
+  PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
+  csv = std::fopen(path.c_str(), "a");
+  PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
+  *continued = true;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode MonitorSetUp(Simulation &sim)
 {
   EnergyReport r;
   PetscFunctionBeginUser;
-  if (sim.track_by_point) PetscCall(NearestParticle(sim));
-  PetscCall(ComputeEnergies(sim, r));
-  sim.diag.initial_energy = r.total - r.external_work;
+  if (sim.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
+  if (!sim.restarted) { // a restart keeps the initial energy and the scale of the balance
+    PetscCall(ComputeEnergies(sim, r));
+    sim.diag.initial_energy = r.total - r.external_work;
+  }
   PetscBool expansion = PETSC_FALSE; // the -grady cylinder's mean radial velocity gets a column
   PetscReal velocity;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &velocity));
-  if (!sim.rank) {
+  bool continued = false;
+  if (!sim.rank && sim.restarted) PetscCall(ContinueMonitorFile(sim, sim.output_dir + "/monitor.csv", &continued));
+  if (!sim.rank && !continued) {
     const std::string path = sim.output_dir + "/monitor.csv";
     csv                    = std::fopen(path.c_str(), "w");
     PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());

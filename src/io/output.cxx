@@ -11,6 +11,7 @@
 #include "../simulation.hpp"
 #include "grid_output.hpp"
 #include <petscviewerhdf5.h>
+#include <array>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -38,6 +39,19 @@ struct ParticleOutputField {
 };
 } // namespace
 
+// The output series so far (step, time, particles), for the checkpoint: a restart continues particles.xmf.
+std::vector<std::array<PetscReal, 3>> OutputRecords()
+{
+  std::vector<std::array<PetscReal, 3>> out;
+  for (const auto &r : records) out.push_back({(PetscReal)r.step, r.time, (PetscReal)r.particles});
+  return out;
+}
+void OutputSetRecords(const std::vector<std::array<PetscReal, 3>> &in)
+{
+  records.clear();
+  for (const auto &r : in) records.push_back({(PetscInt)r[0], r[1], (PetscInt64)r[2]});
+}
+
 PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::string &final_name)
 {
   PetscMPIInt rank;
@@ -59,7 +73,17 @@ PetscErrorCode OutputSetUp(Simulation &sim)
       PetscCheck(std::system(cmd.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not create -output_dir %s", sim.output_dir.c_str());
     }
   }
-  PetscCallMPI(MPI_Barrier(sim.comm));
+  // An output folder that cannot be written is an error now, not after hours of computing.
+  PetscInt ok = 1;
+  if (!sim.rank) {
+    const std::string probe = sim.output_dir + "/.burst_write_test";
+    FILE             *f     = std::fopen(probe.c_str(), "w");
+    ok                      = f && std::fputs("burst\n", f) >= 0 ? 1 : 0;
+    if (f) ok = (std::fclose(f) == 0 && ok) ? 1 : 0;
+    std::remove(probe.c_str());
+  }
+  PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, sim.comm));
+  PetscCheck(ok, sim.comm, PETSC_ERR_FILE_WRITE, "Option -output_dir %s: the folder cannot be written (permissions, a file of that name, or a full disk)", sim.output_dir.c_str());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -95,6 +95,10 @@ PetscReal       initial_mass = -1; // total mass at the first search
 PetscReal       largest_mass = 0, total_intact_mass = 0;
 } // namespace
 
+// What the fragment search remembers between steps, for the checkpoint.
+void FragmentsGetState(PetscReal s[6]) { s[0] = fracture_velocity, s[1] = fracture_time, s[2] = (PetscReal)last_count, s[3] = initial_mass, s[4] = largest_mass, s[5] = total_intact_mass; }
+void FragmentsSetState(const PetscReal s[6]) { fracture_velocity = s[0], fracture_time = s[1], last_count = (PetscInt64)s[2], initial_mass = s[3], largest_mass = s[4], total_intact_mass = s[5]; }
+
 PetscErrorCode FragmentsSetUp(Simulation &sim)
 {
   PetscFunctionBeginUser;

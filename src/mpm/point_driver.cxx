@@ -17,6 +17,7 @@
 //                       rotated back by R(theta)^T so it compares with the unrotated path.
 // The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad).
 #include "simulation.hpp"
+#include "options_check.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include "expm.hpp"
@@ -159,6 +160,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     PetscCall(f.RestoreAll());
   }
   PetscCall(material.InitializeState(sw, 0, 2));
+  PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, true))); // every option read by now: none may be misspelled
 
   const PetscReal total_time = o.final_strain / o.rate, dt = total_time / o.steps;
   FILE           *out        = nullptr;

@@ -110,6 +110,12 @@ PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
   PetscMPIInt local_bad = bad >= 0, any_bad = 0;
   PetscCallMPI(MPI_Allreduce(&local_bad, &any_bad, 1, MPI_INT, MPI_MAX, sim.comm));
   if (local_bad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] after %s, step %" PetscInt_FMT ", t = %g s: particle id %" PetscInt64_FMT ": %s\n", sim.rank, phase, sim.step, (double)sim.time, bad_pid, what));
+  if (any_bad && sim.step > 0) { // a last snapshot (in particles.xmf) that shows where; the folder exists after seeding
+    sim.step += 1; // named after the step that failed, not over the last good output
+    PetscCall(WriteOutput(sim));
+    sim.step -= 1;
+    PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output_dir.c_str(), (int)sim.step + 1));
+  }
   PetscCheck(!any_bad, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": invalid particle state after %s (see the line above: step, particle id and field); reduce -mpm_cfl or check the material parameters", sim.step, phase);
   PetscFunctionReturn(PETSC_SUCCESS);
 }

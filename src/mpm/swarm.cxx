@@ -8,6 +8,12 @@
 
 namespace burst {
 
+std::vector<std::string> &SwarmFieldNames()
+{
+  static std::vector<std::string> names;
+  return names;
+}
+
 PetscErrorCode CreateSwarm(Simulation &sim)
 {
   const PetscInt dim = sim.grid.dim;

@@ -12,9 +12,15 @@
 #include "petsc_compat.hpp"
 #include <petscdmswarm.h>
 #include <array>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace burst {
+
+// Every field registered through RegisterSwarmField, in order (the checkpoint writes them all, so a
+// model's new state field is saved without further code). Defined in swarm.cxx.
+std::vector<std::string> &SwarmFieldNames();
 
 // Registers a swarm field and adds its bytes per particle to *bytes (the storage figure of the summary).
 inline PetscErrorCode RegisterSwarmField(DM swarm, const char name[], PetscInt bs, PetscDataType type, PetscInt *bytes)
@@ -22,6 +28,7 @@ inline PetscErrorCode RegisterSwarmField(DM swarm, const char name[], PetscInt b
   size_t size;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, bs, type));
+  SwarmFieldNames().push_back(name);
   PetscCall(PetscDataTypeGetSize(type, &size));
   *bytes += bs * (PetscInt)size;
   PetscFunctionReturn(PETSC_SUCCESS);
