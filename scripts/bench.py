@@ -171,22 +171,22 @@ def taylor_benchmark(args):
 # ---------------------------------------------------------------------------------------------------
 # Comparison mode: this tree's burst (A) against a build of commit REV (B), alternately.
 BLOCK = "tests/decks/bench_block.opts"
-BLOCK3D = ["-dim", "3", "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", "64,64,64", "-block_lower", "0.1,0.1,0.1",
+BLOCK3D = ["-final_time", "1", "-dim", "3", "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", "64,64,64", "-block_lower", "0.1,0.1,0.1",
            "-block_upper", "0.9,0.9,0.9", "-block_velocity", "20,10,5", "-max_steps", "15"]
 STRESS = ["-options_file", BLOCK, "-options_file", "options/materials/steel_4340_jc.opts", "-block_material", "steel", "-dim", "3",
           "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", "40,40,40", "-block_lower", "0.1,0.1,0.1", "-block_upper", "0.9,0.9,0.9",
           "-block_velocity", "0,0,0", "-block_center", "0.5,0.5,0.5", "-block_radial_velocity", "500", "-mpm_outside_domain", "remove",
-          "-mpm_shape_type", "cpgimp", "-max_steps", "15", "-log_view"]
+          "-mpm_shape_type", "cpgimp", "-max_steps", "15", "-final_time", "1", "-log_view"]
 # (name, description, ranks, arguments (paths relative to the working tree), metric): metric "step" is the
 # stepping time of summary.json, "stress" the MPM_Stress event of -log_view, "wall" the whole run (as
 # CPU time on one rank: see run_case).
 COMPARE_CASES = [
     ("block2d_linear", "2-D elastic block, linear, 512^2 cells, 672 400 particles, 30 steps", 1,
-     ["-options_file", BLOCK, "-grid_cells", "512,512", "-mpm_shape_type", "linear", "-max_steps", "30"], "step"),
+     ["-options_file", BLOCK, "-grid_cells", "512,512", "-mpm_shape_type", "linear", "-max_steps", "30", "-final_time", "1"], "step"),
     ("block3d_cpgimp", "3-D elastic block, cpGIMP, 64^3 cells, 15 steps", 1, ["-options_file", BLOCK, *BLOCK3D, "-mpm_shape_type", "cpgimp"], "step"),
     ("block3d_bspline", "3-D elastic block, B-spline, 64^3 cells, 15 steps", 1, ["-options_file", BLOCK, *BLOCK3D, "-mpm_shape_type", "bspline2"], "step"),
-    ("taylor3d", "3-D Taylor impact step (copper JC + MG, rigid anvil, MUSL, cpGIMP), 100 steps", 1, ["-options_file", "tests/decks/taylor3d.opts", "-max_steps", "100"], "step"),
-    ("taylor3d_2ranks", "the same on 2 ranks", 2, ["-options_file", "tests/decks/taylor3d.opts", "-max_steps", "100"], "step"),
+    ("taylor3d", "3-D Taylor impact step (copper JC + MG, rigid anvil, MUSL, cpGIMP), 100 steps", 1, ["-options_file", "tests/decks/taylor3d.opts", "-max_steps", "100", "-final_time", "8e-5"], "step"),
+    ("taylor3d_2ranks", "the same on 2 ranks", 2, ["-options_file", "tests/decks/taylor3d.opts", "-max_steps", "100", "-final_time", "8e-5"], "step"),
     ("stress_jc", "stress update alone, JC + von Mises (hypoelastic EOS), 3-D block of 4340, 15 steps", 1, [*STRESS, *STRESS_SETS[0][1]], "stress"),
     ("stress_4340", "stress update alone, the paper's full 4340 set, 15 steps", 1, [*STRESS, *STRESS_SETS[1][1]], "stress"),
     ("cylinder2d", "prescribed-pressure cylinder scene (4340, cylinder2d_4340.opts), whole run to 20 us", 1,
@@ -224,6 +224,9 @@ def run_case(binary, ranks, case_args, metric):
     several ranks the CPU time includes MPI's busy waiting, so the phase's wall time is used."""
     import resource
     import time
+    # older commits (e5aecdf) spell -max_steps and -final_time with the mpm_ prefix: give both
+    aliases = {"-max_steps": "-mpm_max_steps", "-final_time": "-mpm_final_time"}
+    case_args = list(case_args) + [x for i, a in enumerate(case_args) if a in aliases for x in (aliases[a], case_args[i + 1])]
     with tempfile.TemporaryDirectory() as out:
         cmd = ([*MPIEXEC, "-n", str(ranks)] if ranks > 1 else []) + [binary, *case_args, "-output_dir", out]
         r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
