@@ -92,6 +92,12 @@ struct Grid {
   PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
   Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
   Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
+  // Load balance (grid.cxx): ownership ranges from the particle work, at start-up and every
+  // balance_interval steps (0: start-up only).
+  PetscBool balance = PETSC_FALSE;
+  PetscInt  balance_interval = 0;
+  PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.1;
+  PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 
@@ -180,6 +186,8 @@ struct Simulation {
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
   PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads, ev_coupling;
+  PetscLogEvent ev_sort = 0, ev_balance = 0; // registered by CreateSwarm and CreateGrid
+  PetscInt      sort_interval = 0;           // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
 
   ~Simulation();
 };
@@ -210,6 +218,8 @@ PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what);
 PetscErrorCode UpdateStress(Simulation &sim);
 PetscErrorCode CheckParticleState(Simulation &sim, const char phase[]);
 PetscErrorCode MigrateParticles(Simulation &sim);
+PetscErrorCode SortParticlesByCell(Simulation &sim);
+PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed);
 // Removes the local particles flagged in `remove` (their mass and energy go to the diagnostics);
 // *removed is the global count.
 PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed);

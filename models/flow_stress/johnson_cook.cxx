@@ -7,12 +7,20 @@
 // factor stays positive. sigma_f = 0 at and above melt.
 #include "flow_stress.hpp"
 #include <cmath>
+#include <limits>
 
 namespace burst {
 
 class JohnsonCook final : public FlowStressModel<JohnsonCook> {
 public:
   PetscReal A = 0, B = 0, n = 1, C = 0, m = 1, rate0 = 1, room_temperature = 298;
+
+private:
+  // Last (T, T_m) and its thermal factor and derivative (Evaluate is called point by point, so a
+  // one-entry cache hits on every iteration of a return after the first; NaN: empty).
+  mutable PetscReal cached_T_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_Tm_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_thermal_ = 1, cached_d_thermal_ = 0;
+
+public:
 
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
@@ -24,14 +32,21 @@ public:
     const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
     const PetscReal rate      = 1 + C * std::log(effective / rate0);
     const PetscReal d_rate    = C / effective * slope;
-    PetscReal       homologous = (x.temperature - room_temperature) / (x.melt_temperature - room_temperature);
-    PetscReal       thermal = 1, d_thermal = 0;
-    if (homologous >= 1) thermal = 0;
-    else if (homologous > 0) {
-      const PetscReal tm = std::pow(homologous, m);
-      thermal            = 1 - tm;
-      d_thermal          = -m * tm / homologous / (x.melt_temperature - room_temperature);
+    // The thermal factor depends on T and T_m only, which a return mapping holds fixed over its
+    // iterations: computed once per point and reused (the same bits as recomputing it).
+    if (!(x.temperature == cached_T_ && x.melt_temperature == cached_Tm_)) {
+      const PetscReal homologous = (x.temperature - room_temperature) / (x.melt_temperature - room_temperature);
+      cached_thermal_ = 1, cached_d_thermal_ = 0;
+      if (homologous >= 1) cached_thermal_ = 0;
+      else if (homologous > 0) {
+        const PetscReal tm = std::pow(homologous, m);
+        cached_thermal_    = 1 - tm;
+        cached_d_thermal_  = -m * tm / homologous / (x.melt_temperature - room_temperature);
+      }
+      cached_T_  = x.temperature;
+      cached_Tm_ = x.melt_temperature;
     }
+    const PetscReal thermal = cached_thermal_, d_thermal = cached_d_thermal_;
     y.sigma         = strain * rate * thermal;
     y.d_strain      = d_strain * rate * thermal;
     y.d_rate        = strain * d_rate * thermal;

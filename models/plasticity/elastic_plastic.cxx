@@ -321,7 +321,7 @@ public:
         const PetscInt q = c.index[k];
         Mat3CMap       L(mp.L + 9 * q), F(mp.F + 9 * q), sigma(mp.stress + 9 * q);
         R_old[k]         = Mat3CMap(R + 9 * q);
-        R_new[k]         = PolarRotation(F);
+        R_new[k]         = PolarRotationFrom(F, R_old[k]); // warm start: R moves little per step
         const Mat3 D_lab = 0.5 * (L + L.transpose());
         const Mat3 Dh    = 0.5 * (R_old[k].transpose() * D_lab * R_old[k] + R_new[k].transpose() * D_lab * R_new[k]);
         const Mat3 sh    = R_old[k].transpose() * sigma * R_old[k];
@@ -330,7 +330,7 @@ public:
         Ddev.diagonal().array() -= trD / 3;
         // the EOS sees the elastic density: the plastic dilatation of the voids (GTN) is not
         // elastic compression, rho_e = rho exp(tr eps_p)
-        c.density[k]             = mp.mass[q] / mp.volume[q] * std::exp(dilatation[q]);
+        c.density[k]             = mp.mass[q] / mp.volume[q] * (dilatation[q] != 0 ? std::exp(dilatation[q]) : 1);
         c.temperature[k]         = mp.temperature[q];
         c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
         c.trace_D[k]             = trD;

@@ -135,6 +135,7 @@ struct State {
   PetscReal sigma_m = 0, q = 0, f = 0, fs = 0, de = 0;
   FlowValue y;
   PetscReal H = 0;              // d sigma_f / d de (strain plus rate term above the floor)
+  PetscReal de_v = 0, de_q = 0; // d de / d dv, d de / d dq (implicit function theorem): predict de at the next iterate
   PetscReal Phi = 0, R2 = 0, R2_scale = 0;
   PetscReal J[2][2] = {{0, 0}, {0, 0}}; // d(Phi, R2)/d(dv, dq)
 };
@@ -142,22 +143,27 @@ struct State {
 // Constants of one point's return.
 struct Point {
   PetscReal sigma_m_tr, q_tr, K, mu, f_n, growth; // growth 1: f = f_n + (1 - f_n) dv; 0: f = f_n
+  const FlowValue *y0 = nullptr;                  // the flow model at de = 0 (the yield test's), reused
 };
 
 // Solves (1 - f) sigma_f(eps0 + de, de/dt) de = W for de >= 0 (inner scalar Newton, bracketed),
 // starting from de. Returns false if it does not converge.
 template <class Flow>
-inline bool MatrixStrain(const Flow &flow, const Chunk &c, int k, PetscReal one_minus_f, PetscReal W, PetscReal tol, PetscInt max_it, PetscReal &de, FlowValue &y, PetscReal &H)
+inline bool MatrixStrain(const Flow &flow, const Chunk &c, int k, PetscReal one_minus_f, PetscReal W, PetscReal tol, PetscInt max_it, const FlowValue *y0, PetscReal &de, FlowValue &y, PetscReal &H)
 {
   auto rate_slope = [&](PetscReal, const FlowValue &v) { return v.d_strain + v.d_rate / c.dt; };
+  auto at_zero    = [&]() {
+    if (y0) y = *y0; // the same point and state: the same values
+    else flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
+  };
   if (!(W > 0)) {
     de = 0;
-    flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
+    at_zero();
     H = rate_slope(0.0, y);
     return true;
   }
   if (!(de > 0) || !std::isfinite(de)) {
-    flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
+    at_zero();
     de = y.sigma > 0 ? W / (one_minus_f * y.sigma) : 0;
   }
   PetscReal lo = 0, hi = PETSC_MAX_REAL;
@@ -194,11 +200,13 @@ inline bool Evaluate(const Flow &flow, const Chunk &c, int k, const GTNParameter
   const PetscReal omf = 1 - s.f;
   const PetscReal W   = s.sigma_m * s.dv + s.q * s.dq;
   const PetscReal W_v = s.sigma_m - P.K * s.dv, W_q = s.q - 3 * P.mu * s.dq;
-  if (!MatrixStrain(flow, c, k, omf, W, inner_tol, max_it, s.de, s.y, s.H)) return false;
+  if (!MatrixStrain(flow, c, k, omf, W, inner_tol, max_it, P.y0, s.de, s.y, s.H)) return false;
   const PetscReal sf = s.y.sigma;
   if (!(sf > 0)) return false;
   const PetscReal den  = omf * (sf + s.de * s.H);
   const PetscReal de_v = (W_v + f_v * sf * s.de) / den, de_q = W_q / den;
+  s.de_v = de_v;
+  s.de_q = de_q;
   const PetscReal sf_v = s.H * de_v, sf_q = s.H * de_q;
   const PetscReal x    = 1.5 * g.q2 * s.sigma_m / sf;
   PetscReal       C, S, dS;
@@ -271,7 +279,9 @@ inline bool Solve(const Flow &flow, const Chunk &c, int k, const GTNParameters &
     for (int ls = 0; ls < 40; ++ls, lambda *= 0.5) {
       trial.dv = PetscMin(PetscMax(st.dv + lambda * step_v, dv_lo), dv_hi);
       trial.dq = PetscMin(PetscMax(st.dq + lambda * step_q, 0.0), dq_bound);
-      trial.de = st.de;
+      // the inner solve starts from de predicted to first order (one iteration fewer than from st.de)
+      const PetscReal predicted = st.de + st.de_v * (trial.dv - st.dv) + st.de_q * (trial.dq - st.dq);
+      trial.de                  = predicted > 0 && std::isfinite(predicted) ? predicted : st.de;
       if (Evaluate(flow, c, k, g, P, inner_tol, max_it, trial) && (merit(trial) < m0 || converged(trial))) {
         accepted = true;
         break;
@@ -373,7 +383,7 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
       continue;
     }
     const bool hydrostatic = q_trial <= gtn::kHydrostatic * y.sigma;
-    gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0};
+    gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0, &y};
     gtn::State st;
     bool       ok = gtn::Solve(flow, c, k, gtn, P, hydrostatic, tol, max_it, st);
     if (!ok && P.growth > 0) {

@@ -50,9 +50,14 @@ PetscErrorCode VonMisesReturn(const Flow &flow, Chunk &c, PetscReal tolerance, P
     // JC/MTS has a kink at the rate floor, where plain Newton can cycle).
     PetscReal de = 0, g = q_trial - y.sigma, lo = 0, hi = q_trial / (3 * mu);
     PetscInt  it = 0;
+    // Warm start: the increment the point's previous plastic rate gives over this step (a steady
+    // plastic flow keeps its rate; the bracket catches a poor guess). The first Newton step from
+    // de = 0 sees no rate hardening (the smooth floor's slope vanishes there) and overshoots.
+    PetscReal guess = c.plastic_strain_rate[k] * dt;
     for (; it < max_iterations; ++it) {
       const PetscReal slope = 3 * mu + y.d_strain + y.d_rate / dt;
       PetscReal       next  = slope > 0 ? de + g / slope : -1;
+      if (guess > 0) next = guess, guess = 0;
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       de = next;
       flow.Evaluate(MakeFlowPoint(flow, c, k, de), y);

@@ -96,11 +96,12 @@ std::string GasNames(const Simulation &sim)
 // Fields of the checkpoint: every registered swarm field that exists in this swarm, plus the id.
 std::vector<std::string> CheckpointFields(const Simulation &sim)
 {
-  std::vector<std::string> out;
-  for (const std::string &n : SwarmFieldNames())
-    if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
+  std::vector<std::string>  out;
+  std::vector<std::string> *names = nullptr;
+  if (SwarmFieldNames(sim.swarm, &names) == PETSC_SUCCESS)
+    for (const std::string &n : *names)
+      if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
   out.push_back(DMSwarmField_pid);
-  (void)sim;
   return out;
 }
 

@@ -7,8 +7,65 @@
 // DMLocalToGlobal(ADD_VALUES) (petsc.md 4.4).
 #include "simulation.hpp"
 #include "util.hpp"
+#include "mpm/swarm_access.hpp"
+#include <string>
+#include <vector>
 
 namespace burst {
+
+static std::string RangesString(const std::vector<PetscInt> &r)
+{
+  std::string s;
+  for (size_t i = 0; i < r.size(); ++i) s += (i ? "," : "") + std::to_string(r[i]);
+  return s;
+}
+
+// The node DMDA, its velocity twin, the vectors and the ownership tables; with ranges (one vector of
+// node counts per direction), on the same process grid with those ownership ranges.
+static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt> *ranges)
+{
+  Grid &g = sim.grid;
+  PetscFunctionBeginUser;
+  const PetscInt width = ShapeGhostWidth(sim.shape);
+  const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
+  const PetscInt procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
+  const PetscInt *l[3] = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
+  if (g.dim == 2) {
+    PetscCall(DMDACreate2d(sim.comm, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, procs0[0], procs0[1], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], &g.da_nodes));
+  } else {
+    PetscCall(DMDACreate3d(sim.comm, bt, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, g.cells[2] + 1, procs0[0], procs0[1], procs0[2], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], l[2], &g.da_nodes));
+  }
+  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)g.da_nodes, "grid_"));
+  if (!ranges) PetscCall(DMSetFromOptions(g.da_nodes)); // (a re-balance keeps the process grid and sets the ranges)
+  PetscCall(DMSetUp(g.da_nodes));
+  PetscCall(DMDASetUniformCoordinates(g.da_nodes, g.lower[0], g.upper[0], g.lower[1], g.upper[1], g.lower[2], g.upper[2]));
+  PetscCall(DMDACreateCompatibleDMDA(g.da_nodes, g.num_velocity_fields * 2 * g.dim, &g.da_velocity));
+
+  // Ownership ranges for the owner-rank computation.
+  PetscInt        m, n, p;
+  PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(DMDAGetOwnershipRanges(g.da_nodes, &l[0], &l[1], &l[2]));
+  if (ranges) PetscCheck(m == g.procs[0] && n == g.procs[1] && (g.dim == 2 || p == g.procs[2]), sim.comm, PETSC_ERR_PLIB, "The re-balanced grid changed the process grid");
+  const PetscInt procs[3] = {m, n, g.dim == 3 ? p : 1};
+  for (PetscInt d = 0; d < 3; ++d) {
+    g.procs[d] = (PetscMPIInt)procs[d];
+    g.start[d].assign(procs[d] + 1, 0);
+    for (PetscInt r = 0; r < procs[d]; ++r) g.start[d][r + 1] = g.start[d][r] + (d < g.dim ? l[d][r] : 1);
+  }
+  PetscInt gxs[3], gxm[3];
+  PetscCall(DMDAGetGhostCorners(g.da_nodes, &gxs[0], &gxs[1], &gxs[2], &gxm[0], &gxm[1], &gxm[2]));
+  for (int d = 0; d < 3; ++d) {
+    g.gxs[d] = gxs[d];
+    g.gxm[d] = gxm[d];
+  }
+  PetscCall(DMCreateGlobalVector(g.da_nodes, &g.nodal));
+  PetscCall(DMCreateLocalVector(g.da_nodes, &g.nodal_local));
+  PetscCall(DMCreateGlobalVector(g.da_velocity, &g.velocity));
+  PetscCall(DMCreateLocalVector(g.da_velocity, &g.velocity_local));
+  PetscCall(PetscObjectSetName((PetscObject)g.nodal, "nodal"));
+  PetscCall(PetscObjectSetName((PetscObject)g.velocity, "grid_velocity"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode CreateGrid(Simulation &sim)
 {
@@ -36,7 +93,15 @@ PetscErrorCode CreateGrid(Simulation &sim)
       PetscCall(OptionsChoice(PetscOptionsObject, face_opt[d][s], "Boundary condition on this domain face: free, fixed (no-slip wall) or symmetry (roller, zero normal velocity)", FaceBCNames, 3, &bc[d][s], nullptr));
       g.bc[d][s] = (FaceBC)bc[d][s];
     }
+  PetscCall(PetscOptionsBool("-grid_balance", "Set the ranks' node ownership ranges from the particle work at start-up (instead of equal node counts)", "", g.balance, &g.balance, nullptr));
+  PetscCall(PetscOptionsInt("-grid_balance_interval", "With -grid_balance: steps between re-balances (new ranges, particles migrated); 0: at start-up only", "", g.balance_interval, &g.balance_interval, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_rigid_weight", "With -grid_balance: work of a rigid particle relative to a deformable one (-), in [0, 1] (no stress update)", "", g.balance_rigid_weight, &g.balance_rigid_weight, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_node_weight", "With -grid_balance: work of a grid node relative to a particle (-), >= 0 (grid update, ghost exchange)", "", g.balance_node_weight, &g.balance_node_weight, nullptr));
   PetscOptionsEnd();
+  PetscCheck(g.balance_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
+  PetscCall(CheckRange(sim.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-grid_balance_node_weight", g.balance_node_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  if (!sim.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &sim.ev_balance));
 
   for (PetscInt d = 0; d < g.dim; ++d) {
     PetscCheck(g.upper[d] > g.lower[d], sim.comm, PETSC_ERR_USER_INPUT, "Options -grid_lower/-grid_upper: upper corner must exceed lower corner in direction %" PetscInt_FMT " (got %g, %g)", d, (double)g.lower[d], (double)g.upper[d]);
@@ -59,43 +124,94 @@ PetscErrorCode CreateGrid(Simulation &sim)
   }
 
   sim.mass_cutoff = sim.mass_cutoff_fraction * sim.densest * g.CellVolume();
-  const PetscInt width = ShapeGhostWidth(sim.shape);
-  const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
-  if (g.dim == 2) {
-    PetscCall(DMDACreate2d(sim.comm, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, PETSC_DECIDE, PETSC_DECIDE, g.num_velocity_fields * g.NodeStride(), width, nullptr, nullptr, &g.da_nodes));
-  } else {
-    PetscCall(DMDACreate3d(sim.comm, bt, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, g.cells[2] + 1, PETSC_DECIDE, PETSC_DECIDE, PETSC_DECIDE, g.num_velocity_fields * g.NodeStride(), width, nullptr, nullptr, nullptr, &g.da_nodes));
-  }
-  PetscCall(PetscObjectSetOptionsPrefix((PetscObject)g.da_nodes, "grid_"));
-  PetscCall(DMSetFromOptions(g.da_nodes));
-  PetscCall(DMSetUp(g.da_nodes));
-  PetscCall(DMDASetUniformCoordinates(g.da_nodes, g.lower[0], g.upper[0], g.lower[1], g.upper[1], g.lower[2], g.upper[2]));
-  PetscCall(DMDACreateCompatibleDMDA(g.da_nodes, g.num_velocity_fields * 2 * g.dim, &g.da_velocity));
+  PetscCall(CreateNodeDMDA(sim, nullptr));
+  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2], (double)g.h[0], (double)g.h[1], (double)g.h[2], ShapeGhostWidth(sim.shape), g.procs[0], g.procs[1], g.procs[2]));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
-  // Ownership ranges for the owner-rank computation.
-  PetscInt        m, n, p;
-  const PetscInt *l[3] = {nullptr, nullptr, nullptr};
-  PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
-  PetscCall(DMDAGetOwnershipRanges(g.da_nodes, &l[0], &l[1], &l[2]));
-  const PetscInt procs[3] = {m, n, g.dim == 3 ? p : 1};
+// Load balance: new node ownership ranges from the particle work, on the same process grid. The
+// work along each direction is the sum over the slabs of cells (one cell index, all of the others) of
+// the particles' weights (1 for a deformable particle, -grid_balance_rigid_weight for a rigid one)
+// plus -grid_balance_node_weight per node; each direction's ranges cut that profile into equal parts
+// (a cell goes with its lower node, petsc.md 3). Every rank keeps at least the ghost width plus one
+// nodes per direction (DMDA's minimum). The particles must carry their cell ids (ComputeOwnerRanks);
+// the caller recomputes the owner ranks and migrates when the ranges changed. The grid vectors are
+// created anew (their values are rebuilt by the next step's P2G). Not with gas or heat conduction,
+// whose grids copy the node DMDA's ranges at set-up.
+PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
+{
+  Grid &g = sim.grid;
+  PetscFunctionBeginUser;
+  *changed = PETSC_FALSE;
+  if (sim.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(!sim.ice && !sim.heat, sim.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with gases (-ice_materials) or -mpm_heat_conduction: their grids follow the node DMDA's ranges from set-up");
+  PetscCall(PetscLogEventBegin(sim.ev_balance, 0, 0, 0, 0));
+  const PetscInt        dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};
+  const PetscInt        offset[3] = {0, nc[0], nc[0] + nc[1]};
+  std::vector<PetscReal> work(nc[0] + nc[1] + nc[2], 0), total(work.size(), 0);
+  {
+    std::vector<PetscReal> weight(sim.materials.size());
+    for (size_t m = 0; m < sim.materials.size(); ++m) {
+      PetscReal v[3];
+      weight[m] = sim.materials[m]->IsRigid(v) ? g.balance_rigid_weight : 1.0;
+    }
+    PetscInt        n;
+    const PetscInt *cell, *material;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
+    PetscCall(fields.Get(field::material, &material));
+    for (PetscInt p = 0; p < n; ++p) {
+      if (cell[p] < 0) continue;
+      const PetscInt  c[3] = {cell[p] % nc[0], (cell[p] / nc[0]) % nc[1], cell[p] / (nc[0] * nc[1])};
+      const PetscReal w    = weight[material[p]];
+      for (PetscInt d = 0; d < dim; ++d) work[offset[d] + c[d]] += w;
+    }
+    PetscCall(fields.RestoreAll());
+  }
+  PetscCallMPI(MPI_Allreduce(work.data(), total.data(), (PetscMPIInt)work.size(), MPIU_REAL, MPI_SUM, sim.comm));
+  const PetscInt        min_nodes = ShapeGhostWidth(sim.shape) + 1;
+  std::vector<PetscInt> ranges[3];
+  bool                  same = true;
   for (PetscInt d = 0; d < 3; ++d) {
-    g.procs[d] = (PetscMPIInt)procs[d];
-    g.start[d].assign(procs[d] + 1, 0);
-    for (PetscInt r = 0; r < procs[d]; ++r) g.start[d][r + 1] = g.start[d][r] + (d < g.dim ? l[d][r] : 1);
+    const PetscInt P = g.procs[d], nodes = d < dim ? g.cells[d] + 1 : 1;
+    ranges[d].assign(P, 0);
+    if (P == 1) {
+      ranges[d][0] = nodes;
+      continue;
+    }
+    // cumulative work up to the lower node of each cell index (nodes per slab: the product of the others)
+    PetscReal slab_nodes = 1;
+    for (PetscInt e = 0; e < dim; ++e)
+      if (e != d) slab_nodes *= g.cells[e] + 1;
+    std::vector<PetscReal> cumulative(nodes + 1, 0); // cumulative[i]: work of nodes (and their cells) < i
+    for (PetscInt i = 0; i < nodes; ++i) cumulative[i + 1] = cumulative[i] + (i < nc[d] ? total[offset[d] + i] : 0) + g.balance_node_weight * slab_nodes;
+    PetscInt begin = 0;
+    for (PetscInt r = 0; r < P - 1; ++r) {
+      const PetscReal target = cumulative[nodes] * (r + 1) / P;
+      PetscInt        end    = begin + min_nodes;
+      while (end < nodes && cumulative[end] < target) ++end;
+      if (end > begin + min_nodes && target - cumulative[end - 1] < cumulative[end] - target) --end; // the nearer cut
+      end           = PetscMin(end, nodes - min_nodes * (P - 1 - r));                              // room for the others
+      ranges[d][r]  = end - begin;
+      begin         = end;
+    }
+    ranges[d][P - 1] = nodes - begin;
+    for (PetscInt r = 0; r < P; ++r) same = same && ranges[d][r] == g.start[d][r + 1] - g.start[d][r];
   }
-  PetscInt gxs[3], gxm[3];
-  PetscCall(DMDAGetGhostCorners(g.da_nodes, &gxs[0], &gxs[1], &gxs[2], &gxm[0], &gxm[1], &gxm[2]));
-  for (int d = 0; d < 3; ++d) {
-    g.gxs[d] = gxs[d];
-    g.gxm[d] = gxm[d];
+  if (!same) {
+    PetscCall(VecDestroy(&g.nodal));
+    PetscCall(VecDestroy(&g.nodal_local));
+    PetscCall(VecDestroy(&g.velocity));
+    PetscCall(VecDestroy(&g.velocity_local));
+    PetscCall(DMDestroy(&g.da_velocity));
+    PetscCall(DMDestroy(&g.da_nodes));
+    PetscCall(CreateNodeDMDA(sim, ranges));
+    *changed = PETSC_TRUE;
+    if (g.balanced_at < 0 || g.balance_interval == 0) PetscCall(PetscPrintf(sim.comm, "  grid balanced from the particle work: node ranges x %s, y %s, z %s\n", RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
+    else PetscCall(PetscInfo(g.da_nodes, "Step %" PetscInt_FMT ": balanced node ranges x %s, y %s, z %s\n", sim.step, RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
   }
-  PetscCall(DMCreateGlobalVector(g.da_nodes, &g.nodal));
-  PetscCall(DMCreateLocalVector(g.da_nodes, &g.nodal_local));
-  PetscCall(DMCreateGlobalVector(g.da_velocity, &g.velocity));
-  PetscCall(DMCreateLocalVector(g.da_velocity, &g.velocity_local));
-  PetscCall(PetscObjectSetName((PetscObject)g.nodal, "nodal"));
-  PetscCall(PetscObjectSetName((PetscObject)g.velocity, "grid_velocity"));
-  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2], (double)g.h[0], (double)g.h[1], (double)g.h[2], width, g.procs[0], g.procs[1], g.procs[2]));
+  PetscCall(PetscLogEventEnd(sim.ev_balance, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

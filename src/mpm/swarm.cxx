@@ -5,14 +5,9 @@
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
+#include <cstring>
 
 namespace burst {
-
-std::vector<std::string> &SwarmFieldNames()
-{
-  static std::vector<std::string> names;
-  return names;
-}
 
 PetscErrorCode CreateSwarm(Simulation &sim)
 {
@@ -52,6 +47,11 @@ PetscErrorCode CreateSwarm(Simulation &sim)
     sim.swarm_bytes += m->registered_bytes_;
   }
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
+  PetscOptionsBegin(sim.comm, "", "Particle order", "Swarm");
+  PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", sim.sort_interval, &sim.sort_interval, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(sim.sort_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_sort_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.sort_interval);
+  if (!sim.ev_sort) PetscCall(PetscLogEventRegister("MPM_Sort", DM_CLASSID, &sim.ev_sort));
   // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).
   PetscCall(DMSwarmSetLocalSizes(sw, 0, 16));
   sim.swarm = sw;
@@ -157,6 +157,12 @@ PetscErrorCode MigrateParticles(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
   PetscCall(ComputeOwnerRanks(sim, &outside));
+  if (sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0))) {
+    PetscBool changed;
+    PetscCall(BalanceGrid(sim, &changed)); // new ownership ranges from the particle work (grid.cxx)
+    sim.grid.balanced_at = sim.step;
+    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside));
+  }
   local = outside;
   PetscCallMPI(MPI_Allreduce(&local, &global_outside, 1, MPIU_INT64, MPI_SUM, sim.comm));
   if (global_outside) {
@@ -197,6 +203,79 @@ PetscErrorCode MigrateParticles(Simulation &sim)
   PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
   PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
   PetscCall(PetscLogEventEnd(sim.ev_migrate, 0, 0, 0, 0));
+  if (sim.sort_interval > 0 && (sim.step + 1) % sim.sort_interval == 0) PetscCall(SortParticlesByCell(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+template <size_t B>
+static inline void Gather(const char *src, char *dst, const std::vector<PetscInt> &order, PetscInt n)
+{
+  for (PetscInt p = 0; p < n; ++p) std::memcpy(dst + B * p, src + B * order[p], B);
+}
+
+// Reorders each rank's particles by cell id (a stable counting sort over the rank's cells; the cell
+// ids are those ComputeOwnerRanks wrote before the migration), permuting every field. Migration
+// appends arrivals at the end and fills holes from the end, and particles drift from their seeded
+// order, so after a while neighbouring particles in memory touch nodes far apart; sorted, the
+// transfers (P2G, G2P) walk the nodal arrays nearly in order. Cost: one gather and copy of every
+// field (the swarm's bytes per particle, twice), about one streaming pass of a step.
+PetscErrorCode SortParticlesByCell(Simulation &sim)
+{
+  PetscInt                  n;
+  std::vector<std::string> *names;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_sort, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  std::vector<PetscInt> order(n);
+  bool                  sorted = true;
+  {
+    const PetscInt *cell;
+    SwarmAccess     fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
+    PetscInt lo = PETSC_MAX_INT, hi = -1;
+    for (PetscInt p = 0; p < n; ++p) {
+      lo = PetscMin(lo, cell[p]);
+      hi = PetscMax(hi, cell[p]);
+    }
+    if (n > 0) {
+      std::vector<PetscInt> offset(hi - lo + 2, 0);
+      for (PetscInt p = 0; p < n; ++p) offset[cell[p] - lo + 1]++;
+      for (size_t c = 1; c < offset.size(); ++c) offset[c] += offset[c - 1];
+      for (PetscInt p = 0; p < n; ++p) order[offset[cell[p] - lo]++] = p;
+      for (PetscInt p = 0; p < n && sorted; ++p) sorted = order[p] == p;
+    }
+    PetscCall(fields.RestoreAll());
+  }
+  if (!sorted) {
+    PetscCall(SwarmFieldNames(sim.swarm, &names));
+    std::vector<std::string> all = {DMSwarmField_pid, DMSwarmField_rank};
+    all.insert(all.end(), names->begin(), names->end());
+    std::vector<char> buffer;
+    for (const std::string &name : all) {
+      PetscInt      bs;
+      PetscDataType type;
+      void         *data;
+      size_t        size;
+      PetscCall(DMSwarmGetField(sim.swarm, name.c_str(), &bs, &type, &data));
+      PetscCall(PetscDataTypeGetSize(type, &size));
+      const size_t bytes = size * (size_t)bs;
+      buffer.resize(bytes * (size_t)n);
+      char *src = static_cast<char *>(data), *dst = buffer.data();
+      switch (bytes) { // fixed sizes inline the copies (a call per particle and field costs more than the copy)
+      case 4: Gather<4>(src, dst, order, n); break;
+      case 8: Gather<8>(src, dst, order, n); break;
+      case 16: Gather<16>(src, dst, order, n); break;
+      case 24: Gather<24>(src, dst, order, n); break;
+      case 32: Gather<32>(src, dst, order, n); break;
+      case 72: Gather<72>(src, dst, order, n); break;
+      default:
+        for (PetscInt p = 0; p < n; ++p) std::memcpy(dst + bytes * p, src + bytes * order[p], bytes);
+      }
+      std::memcpy(src, dst, bytes * (size_t)n);
+      PetscCall(DMSwarmRestoreField(sim.swarm, name.c_str(), &bs, &type, &data));
+    }
+  }
+  PetscCall(PetscLogEventEnd(sim.ev_sort, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

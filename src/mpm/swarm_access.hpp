@@ -18,17 +18,41 @@
 
 namespace burst {
 
-// Every field registered through RegisterSwarmField, in order (the checkpoint writes them all, so a
-// model's new state field is saved without further code). Defined in swarm.cxx.
-std::vector<std::string> &SwarmFieldNames();
+// The names of the fields registered through RegisterSwarmField, kept with the swarm (a composed
+// container): DMSwarm 3.18 has no public way to list its fields; the particle sort (swarm.cxx)
+// permutes every one of them and the checkpoint writes them all, so a model's new state field is
+// saved without further code.
+inline PetscErrorCode SwarmFieldNamesDestroy(void *ctx)
+{
+  delete static_cast<std::vector<std::string> *>(ctx);
+  return PETSC_SUCCESS;
+}
+inline PetscErrorCode SwarmFieldNames(DM swarm, std::vector<std::string> **names)
+{
+  PetscContainer container = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_field_names", (PetscObject *)&container));
+  if (!container) {
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
+    PetscCall(PetscContainerSetPointer(container, new std::vector<std::string>()));
+    PetscCall(PetscContainerSetUserDestroy(container, SwarmFieldNamesDestroy));
+    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_field_names", (PetscObject)container));
+    PetscCall(PetscContainerDestroy(&container));
+    PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_field_names", (PetscObject *)&container));
+  }
+  PetscCall(PetscContainerGetPointer(container, (void **)names));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 // Registers a swarm field and adds its bytes per particle to *bytes (the storage figure of the summary).
 inline PetscErrorCode RegisterSwarmField(DM swarm, const char name[], PetscInt bs, PetscDataType type, PetscInt *bytes)
 {
-  size_t size;
+  size_t                    size;
+  std::vector<std::string> *names;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmRegisterPetscDatatypeField(swarm, name, bs, type));
-  SwarmFieldNames().push_back(name);
+  PetscCall(SwarmFieldNames(swarm, &names));
+  names->push_back(name);
   PetscCall(PetscDataTypeGetSize(type, &size));
   *bytes += bs * (PetscInt)size;
   PetscFunctionReturn(PETSC_SUCCESS);
