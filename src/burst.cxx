@@ -47,6 +47,8 @@ static PetscErrorCode SetUp(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim.stage_setup));
+  // 0. A scene built from a few physical options (-taylor) writes the options the steps below read
+  PetscCall(TaylorSceneOptions(sim));
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
   // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
@@ -69,6 +71,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     if (!sim.ice && sim.coupling) PetscCall(CouplingDestroy(sim));
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }
+  PetscCall(AxisymmetricSetUp(sim));
   if (sim.help) {
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -130,14 +133,16 @@ static PetscErrorCode Run(Simulation &sim)
   PetscCall(WriteAllOutput(sim, false));
   PetscCall(PetscLogStagePop());
   PetscCall(PetscTime(&sim.wall_start));
-  while (sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps) {
+  for (bool done = false; !done && sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps;) {
     PetscCall(PetscTime(&t0));
     PetscCall(PetscLogStagePush(sim.stage_step));
     PetscCall(TakeStep(sim));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&t1));
     sim.wall_stepping += t1 - t0;
-    const bool last = !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
+    PetscBool stop = PETSC_FALSE;
+    PetscCall(CheckKineticStop(sim, &stop));
+    const bool last = stop || !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
     if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
@@ -146,7 +151,9 @@ static PetscErrorCode Run(Simulation &sim)
       PetscCall(WriteAllOutput(sim, last));
       PetscCall(PetscLogStagePop());
     }
+    done = last;
   }
+  if (sim.taylor) PetscCall(TaylorFinish(sim));
   PetscCall(WriteSummary(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

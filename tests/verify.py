@@ -5,6 +5,7 @@ verdict, and exits non-zero on failure. ctest calls them (tests/CMakeLists.txt).
 
   bar          axial bar vibration, period and tip amplitude (verification.md 1.1)
   convergence  axis-aligned manufactured solution, error at three resolutions and observed order
+               (--axisymmetric: the axisymmetric radial/axial one, tests/decks/mms_axisymmetric.opts)
                (Wallstedt & Guilkey 2008; verification.md 1.3)
   disks        colliding elastic disks, energy drift with FLIP and PIC (Sulsky 1994; verification.md 1.2)
   parallel     the same deck on 1 and 2 ranks: particle count, positions and energies agree
@@ -99,7 +100,7 @@ def bar(args):
 
 
 def convergence(args):
-    deck = os.path.join(ROOT, "tests/decks/mms_axis_aligned.opts")
+    deck = os.path.join(ROOT, "tests/decks/mms_axisymmetric.opts" if args.axisymmetric else "tests/decks/mms_axis_aligned.opts")
     cells = [int(c) for c in args.cells.split(",")]
     errors = []
     for n in cells:
@@ -117,7 +118,7 @@ def convergence(args):
             s = run(args.burst, deck, out, extra)
         errors.append(s["displacement_error_rms"])
     orders = [math.log(errors[k] / errors[k + 1]) / math.log(cells[k + 1] / cells[k]) for k in range(len(cells) - 1)]
-    print(f"mms_axis_aligned {args.dim}-D {args.shape} {args.scheme} F update {args.f_update or 'linear'}: cells {cells}, rms displacement error "
+    print(f"{'mms_axisymmetric' if args.axisymmetric else 'mms_axis_aligned'} {args.dim}-D {args.shape} {args.scheme} F update {args.f_update or 'linear'}: cells {cells}, rms displacement error "
           + ", ".join(f"{e:.3e}" for e in errors) + " m; observed order " + ", ".join(f"{o:.2f}" for o in orders))
     failures = []
     if args.min_order is not None:
@@ -132,7 +133,7 @@ def convergence(args):
             failures.append("stall")
     if args.max_error is not None:
         check("finest rms error (m)", errors[-1], args.max_error, failures)
-    finish(f"convergence[{args.dim}d,{args.shape},{args.scheme}]", failures)
+    finish(f"convergence[{'axisymmetric' if args.axisymmetric else str(args.dim) + 'd'},{args.shape},{args.scheme}]", failures)
 
 
 def disks(args):
@@ -374,6 +375,7 @@ def main():
     c.add_argument("--min-order", type=float, default=None)
     c.add_argument("--max-order", type=float, default=None)
     c.add_argument("--max-error", type=float, default=None)
+    c.add_argument("--axisymmetric", action="store_true", help="the axisymmetric manufactured solution (tests/decks/mms_axisymmetric.opts)")
     d = sub.add_parser("disks")
     d.add_argument("--scheme", default="musl")
     d.add_argument("--tol-flip", type=float, default=5e-3)

@@ -146,6 +146,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   if (sim.track_by_point) PetscCall(NearestParticle(sim));
   PetscCall(ComputeEnergies(sim, r));
   sim.diag.initial_energy = r.total - r.external_work;
+  sim.diag.initial_kinetic = r.kinetic;
   if (!sim.rank) {
     const std::string path = sim.output_dir + "/monitor.csv";
     csv                    = std::fopen(path.c_str(), "w");
@@ -266,6 +267,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"stored_elastic_energy\": " << r.stored_elastic << ",\n";
   s << "  \"unaccounted_internal_energy\": " << r.unaccounted << ",\n";
   if (sim.HasParticles()) PetscCall(FragmentsSummary(sim, s));
+  if (sim.taylor) PetscCall(TaylorSummary(sim, s));
   if (sim.ice) {
     const IceTotals &g0 = sim.ice->initial;
     const PetscReal  e0 = g0.internal_energy + g0.kinetic_energy, e = gas.internal_energy + gas.kinetic_energy;
