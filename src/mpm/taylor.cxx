@@ -16,7 +16,7 @@
 //   surface  centres plus the deformed half-size of the particle, lp0 sum_j |F_aj| along a (the
 //            half-width of the deformed parallelogram/parallelepiped of the particle domain).
 // Lf = top - bottom; Df = 2 x the largest radius in the bottom layer (the impact face, within one
-// initial half-spacing of the lowest centre); D(0.2 L0) = 2 x the largest radius within one initial
+// initial particle spacing of the lowest centre (the bottom layer, squashed, and part of the next)); D(0.2 L0) = 2 x the largest radius within one initial
 // spacing of the height 0.2 L0 above the lowest centre. taylor_profile.csv: the largest radius per
 // height bin of one initial spacing; taylor_particles.csv: every rod particle (r, z, half-sizes,
 // plastic strain, T) for scripts/plot_taylor.py.
@@ -164,7 +164,6 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
   PetscCall(SetDefault("-dim", std::to_string(dim)));
   PetscCall(SetDefault("-materials", mat + ",anvil"));
   PetscCall(SetDefault("-anvil_model", "rigid"));
-  PetscCall(PetscOptionsGetReal(nullptr, (mat + "_").c_str(), "-density", nullptr, nullptr)); // (the anvil's density only sets its contact normal)
   PetscCall(SetDefault("-anvil_density", "7800"));
   PetscCall(SetDefault("-geometries", "rod,anvil"));
   PetscCall(SetDefault("-rod_material", mat));
@@ -324,7 +323,7 @@ PetscErrorCode TaylorFinish(Simulation &sim)
     std::vector<PetscReal> rc(nbins, 0), rs(nbins, 0), eb(nbins, 0);
     for (size_t p = 0; p < np; ++p) {
       const PetscReal *q = &all[NV * p];
-      if (q[1] - zmin < 0.5 * spacing) {
+      if (q[1] - zmin < spacing) {
         t.Df[0] = PetscMax(t.Df[0], 2 * q[0]);
         t.Df[1] = PetscMax(t.Df[1], 2 * (q[0] + q[2]));
       }
