@@ -99,6 +99,7 @@ struct Grid {
   PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
   Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
   Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
+  Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 

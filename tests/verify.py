@@ -303,6 +303,34 @@ def contact(args):
     finish("contact", failures)
 
 
+def xpic(args):
+    """XPIC(m) on the colliding disks (Hammerquist & Nairn 2017): XPIC(1) is PIC to rounding; as m grows
+    the energy lost falls monotonically from PIC's towards FLIP's, and momentum stays zero."""
+    deck = os.path.join(ROOT, "options/scenes/colliding_disks.opts")
+    failures, finals = [], {}
+    runs = [("FLIP", ["-mpm_flip_fraction", "1"]), ("PIC", ["-mpm_flip_fraction", "0"])]
+    runs += [(f"XPIC({m})", ["-mpm_transfer", "xpic", "-mpm_xpic_order", str(m)]) for m in args.orders]
+    histories = {}
+    for label, opts in runs:
+        with tempfile.TemporaryDirectory() as out:
+            s = run(args.burst, deck, out, [*opts, "-mpm_scheme", args.scheme, "-output_interval", "0", "-output_grid", "false"])
+            m = monitor(out)
+        e0 = m["total"][0] - m["external_work"][0]
+        histories[label] = m["total"] - m["external_work"]
+        finals[label] = (m["total"][-1] - m["external_work"][-1] - e0) / e0
+        momentum = max(abs(s["momentum"][0]), abs(s["momentum"][1])) / (s["mass"] * 0.1)
+        print(f"colliding_disks {label} {args.scheme}: final energy change {finals[label]:+.4e}, |momentum|/(M v0) {momentum:.1e}")
+        check(f"{label} momentum (relative)", momentum, 1e-10, failures)
+    same = np.abs(histories["XPIC(1)"] - histories["PIC"]).max() / histories["PIC"][0] if "XPIC(1)" in histories else 0
+    check("XPIC(1) energy history against PIC (relative)", same, 1e-10, failures)
+    chain = ["PIC"] + [f"XPIC({m})" for m in args.orders if m > 1] + ["FLIP"]
+    ok = all(finals[a] < finals[b] for a, b in zip(chain, chain[1:]))
+    print("  energy change rises monotonically " + " < ".join(f"{c} {finals[c]:+.3e}" for c in chain) + f": {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("monotone in m")
+    finish(f"xpic[{args.scheme}]", failures)
+
+
 def rotation(args):
     """Rigid rotation through the transfers (tests/decks/spinning_disk.opts): a force-free spinning disk
     whose exact motion keeps every particle's velocity (free flight), so the kinetic energy and the
@@ -465,6 +493,9 @@ def main():
     gr.add_argument("--deck", default="options/scenes/ring2d.opts")
     gr.add_argument("--ranks", type=int, default=1)
     gr.add_argument("--extra", default="")
+    xp = sub.add_parser("xpic")
+    xp.add_argument("--scheme", default="musl")
+    xp.add_argument("--orders", type=lambda t: [int(v) for v in t.split(",")], default=[1, 2, 5])
     ro = sub.add_parser("rotation")
     ro.add_argument("--shape", default="bspline2")
     ro.add_argument("--tol-round-trip", type=float, default=1e-12)
@@ -475,7 +506,7 @@ def main():
     k.add_argument("--ranks", type=int, default=1)
     k.add_argument("--extra", default="")
     args = p.parse_args()
-    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact, "fragments": fragments, "grady": grady, "contact": contact, "rotation": rotation}[args.cmd](args)
+    {"bar": bar, "convergence": convergence, "disks": disks, "parallel": parallel, "deck": deck, "loads": loads, "plate_impact": plate_impact, "fragments": fragments, "grady": grady, "contact": contact, "rotation": rotation, "xpic": xpic}[args.cmd](args)
 
 
 if __name__ == "__main__":
