@@ -55,6 +55,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   //    geometry objects that seed particles
   PetscCall(CreateMaterials(sim));
   PetscCall(CreateGrid(sim));
+  PetscCall(AxisymmetricSetUp(sim));
   PetscCall(FragmentsSetUp(sim));
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
@@ -71,7 +72,6 @@ static PetscErrorCode SetUp(Simulation &sim)
     if (!sim.ice && sim.coupling) PetscCall(CouplingDestroy(sim));
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }
-  PetscCall(AxisymmetricSetUp(sim));
   if (sim.help) {
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -141,7 +141,7 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PetscTime(&t1));
     sim.wall_stepping += t1 - t0;
     PetscBool stop = PETSC_FALSE;
-    PetscCall(CheckKineticStop(sim, &stop));
+    PetscCall(CheckRunStops(sim, &stop));
     const bool last = stop || !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));

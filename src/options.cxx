@@ -50,6 +50,8 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.axisymmetric, &sim.axisymmetric, nullptr));
   PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.stop_kinetic_fraction, &sim.stop_kinetic_fraction, nullptr));
   PetscCheck(sim.stop_kinetic_fraction >= 0 && sim.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.stop_kinetic_fraction);
+  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.energy_growth_limit, &sim.energy_growth_limit, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
   choice = (int)sim.f_update;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
   sim.f_update = (FUpdate)choice;

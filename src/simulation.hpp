@@ -131,6 +131,7 @@ struct Simulation {
   Transfer    transfer = Transfer::FlipPic;
   PetscInt    xpic_order = 2;      // m of XPIC(m); m = 1 is PIC
   PetscBool   axisymmetric = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
+  PetscReal   energy_growth_limit = 0;   // stop with an error once the energy balance error exceeds this (0: never)
   PetscReal   stop_kinetic_fraction = 0; // stop once the kinetic energy falls below this fraction of its initial value (0: never)
   FUpdate     f_update = FUpdate::Linear;
   ShapeType   shape = ShapeType::Linear;
@@ -235,8 +236,9 @@ PetscErrorCode AxisymmetricSetUp(Simulation &sim);
 PetscErrorCode TaylorSceneOptions(Simulation &sim);
 PetscErrorCode TaylorFinish(Simulation &sim);
 PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &out);
-// Stops the run once the kinetic energy is below -stop_kinetic_fraction of its initial value.
-PetscErrorCode CheckKineticStop(Simulation &sim, PetscBool *stop);
+// At monitor steps: *stop once the kinetic energy is below -stop_kinetic_fraction of its initial
+// value; an error naming the cause once the energy has grown past -mpm_energy_growth_limit.
+PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop);
 PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
 PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
 
