@@ -41,7 +41,7 @@ def main():
     ax.set_aspect("equal")
     ax.set_xlim(0, max(1.1 * 1e3 * d["r_m"].max(), 1.2 * R0))
     fig.colorbar(sc, ax=ax, label="plastic strain")
-    ax.legend(fontsize=7, loc="center right")
+    ax.legend(fontsize=7, loc="upper right")
     ax.set_title(a.title or f"{t['material']} {t['velocity']:g} m/s: Lf/L0 {t['Lf_centres'] / t['length0']:.3f}, Df/D0 {t['Df_centres'] / t['diameter0']:.3f}", fontsize=8)
     fig.tight_layout()
     png = a.png or os.path.join(a.out, "taylor.png")
