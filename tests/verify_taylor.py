@@ -60,7 +60,8 @@ def run(burst, case, out, cpd, ppc, dim, ranks, extra):
     proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     wall = time.time() - t0
     if proc.returncode != 0:
-        sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
+        why = [line for line in (proc.stdout + proc.stderr).splitlines() if "failed" in line or "PETSC ERROR: Step" in line or "not finite" in line]
+        sys.stdout.write("\n".join(why[:3]) + "\n" if why else proc.stdout[-3000:] + proc.stderr[-3000:])
         raise SystemExit(f"FAIL: burst exited with {proc.returncode}: {' '.join(cmd)}")
     with open(os.path.join(out, "summary.json")) as f:
         s = json.load(f)
@@ -90,7 +91,12 @@ def validate(args):
         material, U, L0, D0, Lf, Df = TESTS[case]
         out = os.path.join(args.out, case)
         os.makedirs(out, exist_ok=True)
-        s = run(args.burst, case, out, args.cpd, args.ppc, args.dim, args.ranks, args.extra.split())
+        try:
+            s = run(args.burst, case, out, args.cpd, args.ppc, args.dim, args.ranks, args.extra.split())
+        except SystemExit as e:
+            print(f"{case:10s} burst stopped: {e}")
+            failures.append(f"{case} run")
+            continue
         t = s["taylor"]
         lf = [1e3 * t["Lf_centres"], 1e3 * t["Lf_surface"]]
         df = [1e3 * t["Df_centres"], 1e3 * t["Df_surface"]]
@@ -121,6 +127,9 @@ def validate(args):
                 print(f"  {case} {name} error {errs[0]:+.1f} % (centres), {errs[1]:+.1f} % (surface) within {tol:g} %: {'OK' if ok else 'FAIL'}")
                 if not ok:
                     failures.append(f"{case} {name}")
+    if not rows:
+        print("taylor validation: FAIL (no run finished)")
+        sys.exit(1)
     path = os.path.join(args.out, "taylor_validation.csv")
     with open(path, "w", newline="") as f:
         keys = sorted({k for r in rows for k in r}, key=lambda k: list(rows[0]).index(k) if k in rows[0] else 99)
@@ -132,6 +141,8 @@ def validate(args):
         print(f"taylor validation: FAIL ({', '.join(failures)})")
         sys.exit(1)
     print("taylor validation: OK" if args.tol_lf is not None else "taylor validation: reported (no gate)")
+    if failures:
+        sys.exit(1)
 
 
 def parallel(args):
