@@ -55,12 +55,19 @@ def main():
     p.add_argument("--problems", default="mms,axisym,taylor")
     p.add_argument("--taylor-levels", default="8,16", help="cells per diameter of the Taylor runs")
     p.add_argument("--quick", action="store_true")
+    p.add_argument("--cost", default="particle_steps", choices=["particle_steps", "wall_s"],
+                   help="x axis: particle-steps (deterministic) or the stepping wall time (meaningful on an unloaded machine)")
+    p.add_argument("--replot", action="store_true", help="redraw the charts from OUT/speed_accuracy.csv without running")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     shapes = ["linear", "ugimp", "cpgimp", "bspline2"]
     problems = ["mms"] if a.quick else a.problems.split(",")
     rows = []
-    for prob in problems:
+    if a.replot:
+        with open(os.path.join(a.out, "speed_accuracy.csv")) as f:
+            rows = [{k: (v if k in ("problem", "shape", "transfer", "scheme") else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
+        problems = sorted({r["problem"] for r in rows}, key=["mms", "axisym", "taylor"].index)
+    for prob in ([] if a.replot else problems):
         if a.quick:
             methods = [("cpgimp", "flip", "usl"), ("bspline2", "apic", "usl")]
             levels = [8, 16]
@@ -98,21 +105,22 @@ def main():
                 rows.append(row)
                 print(f"{prob} {shape} {transfer} {scheme} n={n}: error {error:.3e}, numerical {numerical:.3e}, wall {s['wall_time_s']:.2f} s, {row['particle_steps']:.3g} particle-steps", flush=True)
     path = os.path.join(a.out, "speed_accuracy.csv")
-    with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
-    print(f"wrote {path}")
+    if not a.replot:
+        with open(path, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        print(f"wrote {path}")
     for prob in problems:
         sub = [r for r in rows if r["problem"] == prob]
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
         for key in sorted({(r["shape"], r["transfer"]) for r in sub}):
-            pts = sorted((r["wall_s"], r["error"]) for r in sub if (r["shape"], r["transfer"]) == key)
+            pts = sorted((r[a.cost], r["error"]) for r in sub if (r["shape"], r["transfer"]) == key)
             ax.loglog([c for c, _ in pts], [e for _, e in pts], "o-" if key[1] == "flip" else ("s--" if key[1] == "apic" else "^:"), ms=4, label=f"{key[0]} {key[1]}")
-        pts = [(r["wall_s"], r["error"]) for r in sub]
+        pts = [(r[a.cost], r["error"]) for r in sub]
         front = pareto(pts)
         ax.loglog([pts[i][0] for i in front], [pts[i][1] for i in front], "ko", mfc="none", ms=10, label="Pareto front")
-        ax.set_xlabel("wall time of the stepping (s, 1 core)")
+        ax.set_xlabel("particle-steps" if a.cost == "particle_steps" else "wall time of the stepping (s, 1 core)")
         ax.set_ylabel({"mms": "RMS displacement error (m)", "axisym": "RMS displacement error (m)", "taylor": "max(|Lf|, |Df|) error vs experiment"}[prob])
         ax.set_title({"mms": "2-D manufactured solution, 8/16/32 cells", "axisym": "axisymmetric manufactured solution, 8/16/32 cells",
                       "taylor": "Taylor, Cu 190 m/s, axisymmetric, 8/16/32 cells per D0"}[prob], fontsize=9)
