@@ -262,7 +262,9 @@ PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what)
   PetscCall(PetscLogEventBegin(sim.ev_g2p, 0, 0, 0, 0));
   const bool xpic = what.velocity && sim.transfer == Transfer::XPIC;
   if (xpic) {
+    PetscCall(PetscLogEventBegin(sim.ev_xpic, 0, 0, 0, 0));
     PetscCall(XPICExtrapolate(sim));
+    PetscCall(PetscLogEventEnd(sim.ev_xpic, 0, 0, 0, 0));
     PetscCall(VecGetArrayRead(sim.grid.xpic_star, &star));
   }
   PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
