@@ -35,6 +35,7 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_P2G", id, &sim.ev_p2g));
   PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.ev_grid));
   PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.ev_g2p));
+  PetscCall(PetscLogEventRegister("MPM_XPIC", id, &sim.ev_xpic));
   PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.ev_stress));
   PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
   PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));
@@ -49,6 +50,8 @@ static PetscErrorCode SetUp(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogStagePush(sim.stage_setup));
+  // 0. A scene built from a few physical options (-taylor) writes the options the steps below read
+  PetscCall(TaylorSceneOptions(sim));
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
   PetscCall(CheckpointSetUp(sim));
@@ -56,6 +59,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   //    geometry objects that seed particles
   PetscCall(CreateMaterials(sim));
   PetscCall(CreateGrid(sim));
+  PetscCall(AxisymmetricSetUp(sim));
   PetscCall(FragmentsSetUp(sim));
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
@@ -136,14 +140,16 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PetscLogStagePop());
   }
   PetscCall(PetscTime(&sim.wall_start));
-  while (sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps) {
+  for (bool done = false; !done && sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps;) {
     PetscCall(PetscTime(&t0));
     PetscCall(PetscLogStagePush(sim.stage_step));
     PetscCall(TakeStep(sim));
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&t1));
     sim.wall_stepping += t1 - t0;
-    const bool last = !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
+    PetscBool stop = PETSC_FALSE;
+    PetscCall(CheckRunStops(sim, &stop));
+    const bool last = stop || !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
     if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
@@ -152,10 +158,11 @@ static PetscErrorCode Run(Simulation &sim)
       PetscCall(WriteAllOutput(sim, last));
       PetscCall(PetscLogStagePop());
     }
-    PetscBool stop; // a checkpoint when due; stop on SIGTERM/SIGUSR1 or near -max_wall_time
-    PetscCall(CheckpointAfterStep(sim, &stop));
-    if (stop) break;
+    PetscBool halt; // a checkpoint when due; stop on SIGTERM/SIGUSR1 or near -max_wall_time
+    PetscCall(CheckpointAfterStep(sim, &halt));
+    done = last || halt;
   }
+  if (sim.taylor) PetscCall(TaylorFinish(sim));
   PetscCall(WriteSummary(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -10,6 +10,7 @@ const char *const FaceBCNames[]        = {"free", "fixed", "symmetry"};
 const char *const OutsidePolicyNames[] = {"error", "remove"};
 const char *const ShapeTypeNames[]     = {"linear", "ugimp", "cpgimp", "bspline2"};
 const char *const ContactTypeNames[]   = {"no_slip", "friction"};
+const char *const TransferNames[]      = {"flip_pic", "apic", "xpic"};
 
 PetscErrorCode ReadRunOptions(Simulation &sim)
 {
@@ -41,6 +42,16 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   sim.scheme = (StepScheme)choice;
   PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.flip_fraction, &sim.flip_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.flip_fraction, 0, 1, PETSC_FALSE));
+  choice = (int)sim.transfer;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_transfer", "Particle velocity transfer: flip_pic (the -mpm_flip_fraction blend), apic (affine PIC, Jiang et al. 2015) or xpic (XPIC(m), Hammerquist & Nairn 2017); default flip_pic", TransferNames, 3, &choice, nullptr));
+  sim.transfer = (Transfer)choice;
+  PetscCall(PetscOptionsInt("-mpm_xpic_order", "Order m of XPIC(m), in [1, 8] (m = 1 is PIC); default 2", "", sim.xpic_order, &sim.xpic_order, nullptr));
+  PetscCheck(sim.xpic_order >= 1 && sim.xpic_order <= 8, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_xpic_order = %" PetscInt_FMT " is out of range: it must be in [1, 8]", sim.xpic_order);
+  PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.axisymmetric, &sim.axisymmetric, nullptr));
+  PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.stop_kinetic_fraction, &sim.stop_kinetic_fraction, nullptr));
+  PetscCheck(sim.stop_kinetic_fraction >= 0 && sim.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.stop_kinetic_fraction);
+  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.energy_growth_limit, &sim.energy_growth_limit, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
   choice = (int)sim.f_update;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
   sim.f_update = (FUpdate)choice;

@@ -19,6 +19,9 @@ enum class FUpdate : int { Linear = 0, Exponential = 1 };
 enum class FaceBC : int { Free = 0, Fixed = 1, Symmetry = 2 };
 enum class OutsidePolicy : int { Error = 0, Remove = 1 };
 enum class ContactType : int { NoSlip = 0, Friction = 1 };
+// Particle velocity transfer (g2p.cxx): the FLIP/PIC blend of -mpm_flip_fraction, APIC (Jiang et al.
+// 2015: an affine velocity matrix per particle) or XPIC(m) (Hammerquist & Nairn 2017).
+enum class Transfer : int { FlipPic = 0, APIC = 1, XPIC = 2 };
 
 extern const char *const StepSchemeNames[];
 extern const char *const FUpdateNames[];
@@ -26,6 +29,7 @@ extern const char *const FaceBCNames[];
 extern const char *const OutsidePolicyNames[];
 extern const char *const ContactTypeNames[];
 extern const char *const ShapeTypeNames[];
+extern const char *const TransferNames[];
 
 // Names of the swarm fields registered by the core.
 namespace field {
@@ -48,6 +52,7 @@ inline constexpr const char *material        = "material";          // int: mate
 inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
 inline constexpr const char *fragment        = "fragment";          // int: fragment id of intact particles, -1 otherwise
 inline constexpr const char *ambient_pressure = "ambient_pressure"; // Pa: pressure of a surrounding gas less its reference (only with gas)
+inline constexpr const char *affine          = "affine";            // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
@@ -70,6 +75,9 @@ struct Geometry;
 
 // Heat conduction in the solids (src/mpm/heat_conduction.cxx), null unless -mpm_heat_conduction.
 struct HeatConduction;
+
+// The Taylor impact scene (src/mpm/taylor.cxx), null unless -taylor.
+struct TaylorScene;
 
 struct Grid {
   PetscInt  dim = 2;
@@ -98,6 +106,7 @@ struct Grid {
   PetscInt  balance_interval = 0;
   PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.1;
   PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
+  Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 
@@ -108,6 +117,8 @@ struct Diagnostics {
   PetscReal removed_mass        = 0; // kg (this rank)
   PetscInt  removed_particles   = 0; // this rank
   PetscReal initial_energy      = 0; // J, global
+  PetscReal initial_kinetic     = 0; // J, global, at the start of the run
+  PetscBool kinetic_stop        = PETSC_FALSE; // the run ended on -stop_kinetic_fraction
   PetscReal max_error_displacement = 0; // analytic solutions: max over monitor steps of the L2 error
   PetscReal last_error_displacement = 0;
 };
@@ -124,6 +135,11 @@ struct Simulation {
   PetscInt    max_steps = PETSC_MAX_INT;
   StepScheme  scheme = StepScheme::USL;
   PetscReal   flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
+  Transfer    transfer = Transfer::FlipPic;
+  PetscInt    xpic_order = 2;      // m of XPIC(m); m = 1 is PIC
+  PetscBool   axisymmetric = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
+  PetscReal   energy_growth_limit = 0;   // stop with an error once the energy balance error exceeds this (0: never)
+  PetscReal   stop_kinetic_fraction = 0; // stop once the kinetic energy falls below this fraction of its initial value (0: never)
   FUpdate     f_update = FUpdate::Linear;
   ShapeType   shape = ShapeType::Linear;
   OutsidePolicy outside = OutsidePolicy::Error;
@@ -170,6 +186,7 @@ struct Simulation {
   IceSolver                              *ice = nullptr;      // owned by the driver (burst.cxx)
   Coupling                               *coupling = nullptr; // owned by the driver
   std::shared_ptr<HeatConduction>         heat;               // null unless -mpm_heat_conduction
+  std::shared_ptr<TaylorScene>            taylor;             // null unless -taylor
   bool HasParticles() const { return swarm != nullptr; }
 
   // State
@@ -185,7 +202,7 @@ struct Simulation {
 
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
-  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads, ev_coupling;
+  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_xpic, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads, ev_coupling;
   PetscLogEvent ev_sort = 0, ev_balance = 0; // registered by CreateSwarm and CreateGrid
   PetscInt      sort_interval = 0;           // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
 
@@ -226,6 +243,18 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
 
 PetscErrorCode TakeStep(Simulation &sim);
+
+// Axisymmetric MPM (src/mpm/axisymmetric.cxx): checks the grid (-dim 2, r >= 0, the axis a symmetry
+// face) and the features that do not support it; a no-op without -axisymmetric.
+PetscErrorCode AxisymmetricSetUp(Simulation &sim);
+// The Taylor impact scene (src/mpm/taylor.cxx): -taylor_* options become grid, material and geometry
+// options (before anything reads them); at the end Lf, Df, the profile and the PNG data.
+PetscErrorCode TaylorSceneOptions(Simulation &sim);
+PetscErrorCode TaylorFinish(Simulation &sim);
+PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &out);
+// At monitor steps: *stop once the kinetic energy is below -stop_kinetic_fraction of its initial
+// value; an error naming the cause once the energy has grown past -mpm_energy_growth_limit.
+PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop);
 PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
 PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
 

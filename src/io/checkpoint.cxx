@@ -58,7 +58,7 @@ enum Scalar : int {
   kIceTime = kFragments + 6, kIceStep, kIceDt, kIceKspTotal, kIcePressureSolves, kIceKsp, kIceOuter,
   kIceInitial, // mass, momentum (3), internal, kinetic
   kBurntParticles = kIceInitial + 6,
-  kIcePeakPressure, kIcePeakPressureTime,
+  kIcePeakPressure, kIcePeakPressureTime, kInitialKinetic,
   kNumScalars
 };
 // Per-rank values of /run/rank_values, in this order.
@@ -242,6 +242,7 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
   s[kTrackPid]              = (PetscReal)sim.track_pid;
   s[kWallStepping]          = sim.wall_stepping;
   FragmentsGetState(&s[kFragments]);
+  s[kInitialKinetic] = sim.diag.initial_kinetic;
   if (sim.ice) {
     const IceSolver &ice = *sim.ice;
     s[kIceTime]           = ice.time;
@@ -548,6 +549,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   sim.wall_stepping                = s[kWallStepping];
   MonitorSetEnergyScale(s[kEnergyScale]);
   FragmentsSetState(&s[kFragments]);
+  sim.diag.initial_kinetic = s[kInitialKinetic];
   if (sim.ice) {
     IceSolver &ice           = *sim.ice;
     ice.time                 = s[kIceTime];

@@ -176,7 +176,8 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   if (sim.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
   if (!sim.restarted) { // a restart keeps the initial energy and the scale of the balance
     PetscCall(ComputeEnergies(sim, r));
-    sim.diag.initial_energy = r.total - r.external_work;
+    sim.diag.initial_energy  = r.total - r.external_work;
+    sim.diag.initial_kinetic = r.kinetic;
   }
   PetscBool expansion = PETSC_FALSE; // the -grady cylinder's mean radial velocity gets a column
   PetscReal velocity;
@@ -313,6 +314,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"stored_elastic_energy\": " << r.stored_elastic << ",\n";
   s << "  \"unaccounted_internal_energy\": " << r.unaccounted << ",\n";
   if (sim.HasParticles()) PetscCall(FragmentsSummary(sim, s));
+  if (sim.taylor) PetscCall(TaylorSummary(sim, s));
   if (sim.ice) {
     const IceTotals &g0 = sim.ice->initial;
     const PetscReal  e0 = g0.internal_energy + g0.kinetic_energy, e = gas.internal_energy + gas.kinetic_energy;

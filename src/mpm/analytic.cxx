@@ -60,6 +60,83 @@ public:
   }
 };
 
+// Axisymmetric radial/axial manufactured solution for the neo-Hookean solid (burst's own, in the
+// manner of Wallstedt & Guilkey 2008) on r, z in [0, 1] x [0, 1], u_theta = 0:
+//   u_r = A sin(pi R) sin(c pi t),  u_z = A sin(pi Z) sin(c pi t + 2 pi/3),
+// so F = diag(F_rr, F_zz, F_tt) with F_tt = 1 + u_r/R (the hoop stretch, -> 1 + A pi sin(c pi t) on
+// the axis). With P_ii = mu (F_ii - 1/F_ii) + lambda ln J / F_ii, the body force makes it exact:
+//   b_r = u_r'' - [dP_rr/dR + (P_rr - P_tt)/R] / rho0,  b_z = u_z'' - dP_zz/dZ / rho0.
+// u_r = 0 on the axis and at R = 1, u_z = 0 at Z = 0, 1: rollers on every face, no shear traction.
+class AxisymmetricRadial final : public AnalyticSolution {
+public:
+  PetscReal amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
+  const char *Name() const override { return "axisymmetric_radial"; }
+  void Phases(PetscReal t, PetscReal &sr, PetscReal &sz) const
+  {
+    sr = std::sin(c * PETSC_PI * t);
+    sz = std::sin(c * PETSC_PI * t + 2.0 * PETSC_PI / 3.0);
+  }
+  // sin(pi R)/R and its derivative, with their series near the axis
+  static void HoopShape(PetscReal R, PetscReal &g, PetscReal &dg)
+  {
+    const PetscReal pi = PETSC_PI;
+    if (R < 1e-4) {
+      g  = pi - pi * pi * pi * R * R / 6.0;
+      dg = -pi * pi * pi * R / 3.0;
+    } else {
+      g  = std::sin(pi * R) / R;
+      dg = (pi * R * std::cos(pi * R) - std::sin(pi * R)) / (R * R);
+    }
+  }
+  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  {
+    PetscReal sr, sz;
+    Phases(t, sr, sz);
+    u[0] = amplitude * std::sin(PETSC_PI * X[0]) * sr;
+    u[1] = amplitude * std::sin(PETSC_PI * X[1]) * sz;
+    u[2] = 0;
+  }
+  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override
+  {
+    const PetscReal w = c * PETSC_PI;
+    v[0] = amplitude * w * std::sin(PETSC_PI * X[0]) * std::cos(w * t);
+    v[1] = amplitude * w * std::sin(PETSC_PI * X[1]) * std::cos(w * t + 2.0 * PETSC_PI / 3.0);
+    v[2] = 0;
+  }
+  void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
+  {
+    PetscReal sr, sz, g, dg;
+    Phases(t, sr, sz);
+    HoopShape(X[0], g, dg);
+    for (int a = 0; a < 9; ++a) F[a] = 0;
+    F[0] = 1 + amplitude * PETSC_PI * std::cos(PETSC_PI * X[0]) * sr;
+    F[4] = 1 + amplitude * PETSC_PI * std::cos(PETSC_PI * X[1]) * sz;
+    F[8] = 1 + amplitude * g * sr;
+  }
+  bool HasBodyForce() const override { return true; }
+  void BodyForce(const PetscReal X[], PetscReal t, PetscReal b[]) const override
+  {
+    const PetscReal pi = PETSC_PI, R = X[0], Z = X[1], A = amplitude;
+    PetscReal       sr, sz, g, dg;
+    Phases(t, sr, sz);
+    HoopShape(R, g, dg);
+    const PetscReal Frr = 1 + A * pi * std::cos(pi * R) * sr, dFrr = -A * pi * pi * std::sin(pi * R) * sr;
+    const PetscReal Ftt = 1 + A * g * sr, dFtt = A * dg * sr;
+    const PetscReal Fzz = 1 + A * pi * std::cos(pi * Z) * sz, dFzz = -A * pi * pi * std::sin(pi * Z) * sz;
+    const PetscReal lnJ = std::log(Frr * Fzz * Ftt);
+    const PetscReal Prr = mu * (Frr - 1 / Frr) + lambda * lnJ / Frr, Ptt = mu * (Ftt - 1 / Ftt) + lambda * lnJ / Ftt;
+    const PetscReal dlnJ_R = dFrr / Frr + dFtt / Ftt, dlnJ_Z = dFzz / Fzz;
+    const PetscReal dPrr = mu * (1 + 1 / (Frr * Frr)) * dFrr + lambda * (dlnJ_R / Frr - lnJ * dFrr / (Frr * Frr));
+    const PetscReal dPzz = mu * (1 + 1 / (Fzz * Fzz)) * dFzz + lambda * (dlnJ_Z / Fzz - lnJ * dFzz / (Fzz * Fzz));
+    // (P_rr - P_tt)/R: both -> the same value on the axis; R >= h/(2 ppc) > 0 for particles
+    const PetscReal hoop = (Prr - Ptt) / R;
+    const PetscReal w2 = (c * pi) * (c * pi);
+    b[0] = -A * w2 * std::sin(pi * R) * sr - (dPrr + hoop) / rho0;
+    b[1] = -A * w2 * std::sin(pi * Z) * sz - dPzz / rho0;
+    b[2] = 0;
+  }
+};
+
 // A decaying mode of the heat equation in a bar at rest: T0 + dT f(pi X/L) exp(-alpha pi^2 t/L^2),
 // f = sin (ends held at T0) or cos (insulated ends).
 class HeatMode final : public AnalyticSolution {
@@ -82,7 +159,7 @@ public:
   }
 };
 
-static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned", "heat_sine", "heat_cosine"};
+static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned", "heat_sine", "heat_cosine", "axisymmetric_radial"};
 
 PetscErrorCode CreateAnalyticSolution(Simulation &sim)
 {
@@ -92,7 +169,7 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
   PetscReal amplitude = -1, length = -1, T0 = 300;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Analytic solutions for verification", "Analytic");
-  PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 5, &type, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 6, &type, nullptr));
   PetscCall(PetscOptionsString("-analytic_material", "Material whose parameters the analytic solution uses (default: the first of -materials)", "", material, material, sizeof(material), &has_material));
   PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05); heat_sine/heat_cosine: temperature amplitude dT (K, default 10)", "", amplitude, &amplitude, nullptr));
   PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25; heat_sine/heat_cosine: bar length L (m, the bar is [0, L] in x), default 1", "", length, &length, nullptr));
@@ -135,6 +212,15 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
     bar->wave_number = PETSC_PI / (2 * bar->length);
     bar->frequency   = bar->wave_number * std::sqrt(E / m->Density());
     sim.analytic     = std::move(bar);
+  } else if (type == 5) {
+    PetscCheck(sim.axisymmetric, sim.comm, PETSC_ERR_USER_INPUT, "-analytic axisymmetric_radial needs -axisymmetric (and -dim 2)");
+    auto mms       = std::make_unique<AxisymmetricRadial>();
+    mms->amplitude = amplitude > 0 ? amplitude : 0.05;
+    mms->mu        = E / (2 * (1 + nu));
+    mms->lambda    = E / (3 * (1 - 2 * nu)) - 2.0 * mms->mu / 3.0;
+    mms->rho0      = m->Density();
+    mms->c         = std::sqrt(E / mms->rho0);
+    sim.analytic   = std::move(mms);
   } else {
     auto mms       = std::make_unique<AxisAligned>();
     mms->amplitude = amplitude > 0 ? amplitude : 0.05;

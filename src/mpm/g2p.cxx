@@ -4,6 +4,14 @@
 //   kinematics         L_p = sum v_new (x) grad N; F_p <- (I + L dt) F_p (or exp(L dt) F_p); V_p = V0 det F
 //                      (fused here so F, L and the volumes are streamed once per step)
 // The work of the external forces, f_ext . (v_p^n + v_p^{n+1})/2 dt, is accumulated here.
+//
+// Axisymmetric (x = r): the hoop rate L_tt = v_r(x_p)/r_p goes into the zz entry of L, with r_p the
+// radius before the position update, so that F_tt <- (1 + L_tt dt) F_tt stays exactly r/R.
+// XPIC(m) (-mpm_transfer xpic -mpm_xpic_order m): see XPICExtrapolate below.
+// APIC (-mpm_transfer apic; Jiang et al., JCP 2017): v_p = sum N v_new and the affine matrix
+// C_p = B_p D_p^-1, B_p = sum N v_new (x_I - x_p)^T, D_p = sum N (x_I - x_p)(x_I - x_p)^T, computed
+// from the stencil itself (so the extrapolated wall weights keep it exact); for linear shape functions
+// B_p D_p^-1 = sum v_new grad N^T, which stays defined when a particle sits on a node line.
 #include "grid_index.hpp"
 #include "mpm/swarm_access.hpp"
 #include "expm.hpp"
@@ -15,15 +23,44 @@ struct G2PKernel {
   Simulation        &sim;
   G2PRequest         what;
   const PetscScalar *vel;
+  const PetscScalar *star; // XPIC: ghosted v* per velocity field, laid out as vel (first DIM of each 2 DIM)
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
+    PetscFunctionBeginUser;
+    const Transfer tr = what.velocity ? sim.transfer : Transfer::FlipPic;
+    if constexpr (DIM == 2) {
+      if (sim.axisymmetric) {
+        PetscCall(ByTransfer<DIM, S, true>(tr));
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+    }
+    PetscCall(ByTransfer<DIM, S, false>(tr));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  template <int DIM, ShapeType S, bool AXI>
+  PetscErrorCode ByTransfer(Transfer tr)
+  {
+    PetscFunctionBeginUser;
+    switch (tr) {
+    case Transfer::FlipPic: PetscCall((Loop<DIM, S, AXI, Transfer::FlipPic>())); break;
+    case Transfer::APIC: PetscCall((Loop<DIM, S, AXI, Transfer::APIC>())); break;
+    case Transfer::XPIC: PetscCall((Loop<DIM, S, AXI, Transfer::XPIC>())); break;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  template <int DIM, ShapeType S, bool AXI, Transfer TR>
+  PetscErrorCode Loop()
+  {
+    constexpr bool APIC = TR == Transfer::APIC, XPIC = TR == Transfer::XPIC;
     const Grid          &g = sim.grid;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
     const LocalNodeIndex index(g);
     const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
     PetscInt             n;
-    PetscReal           *x, *v, *L, *F, *vol;
+    PetscReal           *x, *v, *L, *F, *vol, *affine = nullptr;
     const PetscReal     *hw, *fext, *vol0;
     const PetscInt      *failed = nullptr, *material = nullptr;
     const bool           exponential = sim.f_update == FUpdate::Exponential;
@@ -39,12 +76,14 @@ struct G2PKernel {
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::volume0, &vol0));
+    if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
     if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {};
+      PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
+      const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
@@ -53,11 +92,47 @@ struct G2PKernel {
           vnew[a] += N * nv[DIM + a];
           for (int b = 0; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
         }
+        if constexpr (XPIC) {
+          const PetscScalar *sv = star + index(i, j, k) * vdof + vf * 2 * DIM;
+          for (int a = 0; a < DIM; ++a) vs[a] += N * sv[a];
+        }
+        if constexpr (APIC && S != ShapeType::Linear) {
+          const PetscInt I[3]  = {i, j, k};
+          PetscReal      dx[3] = {0, 0, 0};
+          for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - x[DIM * p + b];
+          for (int a = 0; a < DIM; ++a)
+            for (int b = 0; b < DIM; ++b) {
+              B[a][b] += N * nv[DIM + a] * dx[b];
+              D[a][b] += N * dx[a] * dx[b];
+            }
+        }
       });
+      (void)B;
+      (void)D;
+      (void)vs;
+      if constexpr (APIC) {
+        PetscReal *C = affine + 9 * p;
+        for (int a = 0; a < 9; ++a) C[a] = 0;
+        if constexpr (S == ShapeType::Linear) {
+          for (int a = 0; a < DIM; ++a)
+            for (int b = 0; b < DIM; ++b) C[3 * a + b] = grad[a][b];
+        } else {
+          Eigen::Matrix<PetscReal, DIM, DIM> Bm, Dm;
+          for (int a = 0; a < DIM; ++a)
+            for (int b = 0; b < DIM; ++b) {
+              Bm(a, b) = B[a][b];
+              Dm(a, b) = D[a][b];
+            }
+          const Eigen::Matrix<PetscReal, DIM, DIM> Cm = Bm * Dm.inverse();
+          for (int a = 0; a < DIM; ++a)
+            for (int b = 0; b < DIM; ++b) C[3 * a + b] = Cm(a, b);
+        }
+      }
       if (what.velocity) {
         PetscReal *vp = v + DIM * p;
         for (int a = 0; a < DIM; ++a) {
-          const PetscReal v_new = flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a];
+          // XPIC(m): v_p = S v* + S (v_new - v_old), v* = [I - (I - S+S)^m] v_old on the grid
+          const PetscReal v_new = APIC ? vnew[a] : (XPIC ? vs[a] + dv[a] : flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a]);
           work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
           vp[a] = v_new;
         }
@@ -69,6 +144,7 @@ struct G2PKernel {
         for (int a = 0; a < 9; ++a) Lp[a] = 0;
         for (int a = 0; a < DIM; ++a)
           for (int b = 0; b < DIM; ++b) Lp[3 * a + b] = grad[a][b];
+        if constexpr (AXI) Lp[8] = vnew[0] / r_old; // hoop rate v_r/r
         Mat3Map    Fp(F + 9 * p);
         const Mat3 increment = exponential ? Expm(Mat3CMap(Lp) * dt) : Mat3(Mat3::Identity() + Mat3CMap(Lp) * dt);
         Fp                   = increment * Mat3(Fp);
@@ -80,17 +156,122 @@ struct G2PKernel {
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
+// One application of S+ S to a grid field w (ghosted, layout of the velocity vector, first DIM entries
+// of each field): u_p = sum N w_I, then sum_p N m_p u_p summed into `sum` (ghosted, zeroed here).
+struct XPICKernel {
+  Simulation        &sim;
+  const PetscScalar *w;
+  PetscScalar       *sum;
+  template <int DIM, ShapeType S>
+  PetscErrorCode operator()()
+  {
+    const Grid          &g = sim.grid;
+    const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
+    const LocalNodeIndex index(g);
+    PetscInt             n;
+    const PetscReal     *x, *hw, *F, *m;
+    const PetscInt      *failed = nullptr, *material = nullptr;
+    PetscFunctionBeginUser;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess fields(sim.swarm);
+    PetscCall(fields.Get(DMSwarmPICField_coor, &x));
+    PetscCall(fields.Get(field::half_width0, &hw));
+    PetscCall(fields.Get(field::F, &F));
+    PetscCall(fields.Get(field::mass, &m));
+    if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
+    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
+    Stencil<DIM, S> st;
+    for (PetscInt p = 0; p < n; ++p) {
+      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0;
+      PetscReal      u[DIM] = {};
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal *) {
+        const PetscScalar *wv = w + index(i, j, k) * vdof + vf * 2 * DIM;
+        for (int a = 0; a < DIM; ++a) u[a] += N * wv[a];
+      });
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal *) {
+        PetscScalar *sv = sum + index(i, j, k) * vdof + vf * 2 * DIM;
+        for (int a = 0; a < DIM; ++a) sv[a] += N * m[p] * u[a];
+      });
+    }
+    PetscCall(fields.RestoreAll());
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
 } // namespace
+
+// XPIC(m) (Hammerquist & Nairn, CMAME 318 (2017) 724): v* = sum_{k=1..m} (-1)^{k+1} C(m,k) (S+S)^{k-1} v_old,
+// the first m terms of the series for the particle velocities that FLIP keeps and PIC smooths away;
+// m = 1 is PIC, m -> infinity is FLIP. S+S is one G2P then one mass-weighted P2G (m - 1 particle
+// passes). Nodes under the mass cut-off stay zero; the rigid field keeps its prescribed velocity.
+static PetscErrorCode XPICExtrapolate(Simulation &sim)
+{
+  Grid          &g = sim.grid;
+  const PetscInt dim = g.dim, nvf = g.num_velocity_fields, vdof = nvf * 2 * dim, stride = g.NodeStride(), dof = nvf * stride;
+  const PetscInt m = sim.xpic_order;
+  PetscFunctionBeginUser;
+  if (!g.xpic_star) {
+    PetscCall(DMCreateLocalVector(g.da_velocity, &g.xpic_star));
+    PetscCall(DMCreateLocalVector(g.da_velocity, &g.xpic_w));
+    PetscCall(DMCreateLocalVector(g.da_velocity, &g.xpic_sum));
+    PetscCall(DMCreateGlobalVector(g.da_velocity, &g.xpic_global));
+  }
+  // w = v_old, v* = m w
+  PetscCall(VecCopy(g.velocity_local, g.xpic_w));
+  PetscCall(VecCopy(g.velocity_local, g.xpic_star));
+  PetscCall(VecScale(g.xpic_star, (PetscScalar)m));
+  PetscReal coefficient = m; // (-1)^{k+1} C(m, k)
+  for (PetscInt k = 2; k <= m; ++k) {
+    coefficient *= -(PetscReal)(m - k + 1) / k;
+    const PetscScalar *w;
+    PetscScalar       *sum, *glob;
+    const PetscScalar *nodal;
+    PetscCall(VecZeroEntries(g.xpic_sum));
+    PetscCall(VecGetArrayRead(g.xpic_w, &w));
+    PetscCall(VecGetArray(g.xpic_sum, &sum));
+    XPICKernel kernel{sim, w, sum};
+    PetscCall(DispatchShape(dim, sim.shape, kernel));
+    PetscCall(VecRestoreArray(g.xpic_sum, &sum));
+    PetscCall(VecRestoreArrayRead(g.xpic_w, &w));
+    PetscCall(VecZeroEntries(g.xpic_global));
+    PetscCall(DMLocalToGlobal(g.da_velocity, g.xpic_sum, ADD_VALUES, g.xpic_global));
+    // divide by the nodal mass; the rigid field keeps its velocity
+    PetscInt nlocal;
+    PetscCall(VecGetLocalSize(g.xpic_global, &nlocal));
+    PetscCall(VecGetArray(g.xpic_global, &glob));
+    PetscCall(VecGetArrayRead(g.nodal, &nodal));
+    const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
+    for (PetscInt node = 0; node < nlocal / vdof; ++node)
+      for (PetscInt vf = 0; vf < nvf; ++vf) {
+        const PetscReal mass = nodal[node * dof + vf * stride];
+        PetscScalar    *v    = glob + node * vdof + vf * 2 * dim;
+        for (PetscInt a = 0; a < dim; ++a) v[a] = vf == rigid ? sim.rigid_velocity[a] : (mass > sim.mass_cutoff ? v[a] / mass : 0);
+      }
+    PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
+    PetscCall(VecRestoreArray(g.xpic_global, &glob));
+    PetscCall(DMGlobalToLocal(g.da_velocity, g.xpic_global, INSERT_VALUES, g.xpic_w));
+    PetscCall(VecAXPY(g.xpic_star, coefficient, g.xpic_w));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what)
 {
-  const PetscScalar *vel;
+  const PetscScalar *vel, *star = nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_g2p, 0, 0, 0, 0));
+  const bool xpic = what.velocity && sim.transfer == Transfer::XPIC;
+  if (xpic) {
+    PetscCall(PetscLogEventBegin(sim.ev_xpic, 0, 0, 0, 0));
+    PetscCall(XPICExtrapolate(sim));
+    PetscCall(PetscLogEventEnd(sim.ev_xpic, 0, 0, 0, 0));
+    PetscCall(VecGetArrayRead(sim.grid.xpic_star, &star));
+  }
   PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
-  G2PKernel kernel{sim, what, vel};
+  G2PKernel kernel{sim, what, vel, star};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
+  if (xpic) PetscCall(VecRestoreArrayRead(sim.grid.xpic_star, &star));
   PetscCall(PetscLogEventEnd(sim.ev_g2p, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

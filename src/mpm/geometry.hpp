@@ -21,6 +21,7 @@ struct Geometry {
   PetscInt        material = 0;
   PetscInt        particles_per_cell = 2;                    // per direction
   PetscReal       velocity[3] = {0, 0, 0};                   // m/s
+  PetscReal       angular_velocity = 0;                      // rad/s, rigid spin about the centre (z axis)
   PetscReal       radial_velocity = 0;                       // m/s, added along the radial direction
   PetscReal       temperature = 300;                         // K
   PressureSurface pressure_surface = PressureSurface::None;

@@ -49,6 +49,10 @@ Simulation::~Simulation()
   VecDestroy(&grid.nodal_local);
   VecDestroy(&grid.velocity);
   VecDestroy(&grid.velocity_local);
+  VecDestroy(&grid.xpic_star);
+  VecDestroy(&grid.xpic_w);
+  VecDestroy(&grid.xpic_sum);
+  VecDestroy(&grid.xpic_global);
   DMDestroy(&grid.da_velocity);
   DMDestroy(&grid.da_nodes);
   DMDestroy(&swarm);

@@ -1,5 +1,13 @@
 // Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
 // into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
+//
+// Axisymmetric (-axisymmetric; x = r, y = z, masses and volumes per radian): the weak form of
+// div sigma in cylindrical coordinates adds the hoop term to the radial force,
+//   f_r,I = -sum_p V_p (sigma_rr dN/dr + sigma_rz dN/dz + sigma_tt N_I / r_p),
+// with sigma_tt the zz entry of the 3x3 stress (Sulsky & Schreyer, CMAME 139 (1996) 409; Nairn &
+// Guilkey, IJNME 101 (2015) 127). APIC (-mpm_transfer apic) adds the affine part of the particle
+// velocity to the momentum: m_p N_I (v_p + C_p (x_I - x_p)) (Jiang et al., JCP 2017, eq. 9).
+// Both are template switches, so the default path is the loop it always was.
 #include "grid_index.hpp"
 #include "mpm/swarm_access.hpp"
 
@@ -13,11 +21,28 @@ struct P2GKernel {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
+    PetscFunctionBeginUser;
+    const bool apic = sim.transfer == Transfer::APIC && what.momentum;
+    if constexpr (DIM == 2) {
+      if (sim.axisymmetric) {
+        if (apic) PetscCall((Loop<DIM, S, true, true>()));
+        else PetscCall((Loop<DIM, S, true, false>()));
+        PetscFunctionReturn(PETSC_SUCCESS);
+      }
+    }
+    if (apic) PetscCall((Loop<DIM, S, false, true>()));
+    else PetscCall((Loop<DIM, S, false, false>()));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  template <int DIM, ShapeType S, bool AXI, bool APIC>
+  PetscErrorCode Loop()
+  {
     const Grid          &g = sim.grid;
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
-    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr;
+    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr, *affine = nullptr;
     const PetscInt      *failed = nullptr, *material = nullptr;
     const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
@@ -33,6 +58,7 @@ struct P2GKernel {
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::bulk_viscosity, &q));
     if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
+    if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (nvf > 1) PetscCall(fields.Get(field::material, &material));
     if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
     Stencil<DIM, S> st;
@@ -41,7 +67,10 @@ struct P2GKernel {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
       const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
-      const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p;
+      const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p, *xp = x + DIM * p;
+      PetscReal        hoop = 0; // axisymmetric: V_p sigma_tt / r_p
+      if constexpr (AXI) hoop = Vp * s[8] / xp[0];
+      (void)hoop;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
         if (do_mass) {
@@ -49,7 +78,17 @@ struct P2GKernel {
           if (nvf > 1)
             for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
         }
-        if (do_mom)
+        if constexpr (APIC) {
+          const PetscInt  I[3]  = {i, j, k};
+          PetscReal       dx[3] = {0, 0, 0};
+          for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
+          const PetscReal *C = affine + 9 * p;
+          for (int a = 0; a < DIM; ++a) {
+            PetscReal va = vp[a];
+            for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
+            node[1 + a] += N * mp * va;
+          }
+        } else if (do_mom)
           for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
         if (do_force)
           for (int a = 0; a < DIM; ++a) {
@@ -58,6 +97,8 @@ struct P2GKernel {
             div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
             node[1 + DIM + a] += -Vp * div + N * fe[a];
           }
+        if constexpr (AXI)
+          if (do_force) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
       });
     }
     PetscCall(fields.RestoreAll());

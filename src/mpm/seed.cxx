@@ -135,6 +135,7 @@ PetscErrorCode ReadGeometries(Simulation &sim)
     PetscCall(OptionsRealVector(PetscOptionsObject, "-angle_range", "Sector of a disk/annulus/cylinder: start,end angle in degrees (0,90 for a quarter)", g->angle_range, 2, nullptr));
     PetscCall(PetscOptionsInt("-particles_per_cell", "Particles per cell in each direction, >= 1", "", g->particles_per_cell, &g->particles_per_cell, nullptr));
     PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s)", g->velocity, dim, nullptr));
+    PetscCall(PetscOptionsReal("-angular_velocity", "Initial rigid spin about -center (rad/s; about the z axis in 3-D) added to -velocity, default 0", "", g->angular_velocity, &g->angular_velocity, nullptr));
     PetscCall(PetscOptionsReal("-radial_velocity", "Initial radial velocity added to -velocity (m/s)", "", g->radial_velocity, &g->radial_velocity, nullptr));
     PetscCall(PetscOptionsReal("-temperature", "Initial temperature (K), > 0", "", g->temperature, &g->temperature, nullptr));
     PetscCall(OptionsChoice(PetscOptionsObject, "-pressure_surface", "Surface of a disk/annulus/cylinder/sphere loaded by the pressure of -<name>_pressure_curve", PressureSurfaceNames, 3, &surface, nullptr));
@@ -255,12 +256,14 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscInt  *fragment;
   PetscCall(fields.Get(field::bulk_viscosity, &q));
   PetscCall(fields.Get(field::fragment, &fragment));
-  PetscReal *ambient = nullptr;
+  PetscReal *ambient = nullptr, *affine = nullptr;
   if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
+  if (sim.transfer == Transfer::APIC) PetscCall(fields.Get(field::affine, &affine));
   for (PetscInt p = 0; p < n; ++p) {
     const Geometry &geo = *sim.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
-    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc);
+    // axisymmetric: per radian, the sub-cell's area times its radius
+    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (sim.axisymmetric ? points[p].x[0] : 1.0);
     PetscReal       r_hat[3], r;
     geo.RadialDirection(points[p].x, r_hat, &r);
     pid[p]   = points[p].id;
@@ -276,11 +279,17 @@ PetscErrorCode SeedParticles(Simulation &sim)
     q[p]        = 0;
     fragment[p] = -1;
     if (ambient) ambient[p] = 0;
+    if (affine) { // the affine part of the initial field: the spin W of -<name>_angular_velocity
+      for (int a = 0; a < 9; ++a) affine[9 * p + a] = 0;
+      affine[9 * p + 1] = -geo.angular_velocity;
+      affine[9 * p + 3] = geo.angular_velocity;
+    }
     for (PetscInt d = 0; d < dim; ++d) {
       x[p * dim + d]    = points[p].x[d];
       X0[p * dim + d]   = points[p].x[d];
       hw[p * dim + d]   = 0.5 * g.h[d] / ppc;
       v[p * dim + d]    = geo.velocity[d] + geo.radial_velocity * r_hat[d];
+      if (geo.angular_velocity != 0 && d < 2) v[p * dim + d] += geo.angular_velocity * (d == 0 ? -(points[p].x[1] - geo.center[1]) : points[p].x[0] - geo.center[0]);
       fext[p * dim + d] = 0;
       area[p * dim + d] = 0;
     }

@@ -42,6 +42,7 @@ PetscErrorCode CreateSwarm(Simulation &sim)
   PetscCall(RegisterSwarmField(sw, field::bulk_viscosity, 1, PETSC_REAL, &sim.swarm_bytes));
   PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &sim.swarm_bytes));
   if (sim.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &sim.swarm_bytes));
+  if (sim.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &sim.swarm_bytes));
   for (auto &m : sim.materials) {
     PetscCall(m->RegisterFields(sw));
     sim.swarm_bytes += m->registered_bytes_;

@@ -1,0 +1,136 @@
+#!/usr/bin/python3
+"""Speed against accuracy: error against cost for each method, with the Pareto front marked.
+
+  scripts/study_speed_accuracy.py --burst build/burst [--out doc/figures] [--quick]
+
+Methods are interpolator x transfer (FLIP, APIC, XPIC(2)) at USL/MUSL; each is run at several
+resolutions on
+  mms     the axis-aligned manufactured solution, 2-D (tests/decks/mms_axis_aligned.opts): RMS
+          displacement error against the exact solution after one period, 8/16/32 cells;
+  axisym  the axisymmetric manufactured solution (tests/decks/mms_axisymmetric.opts), the same;
+  taylor  the OFHC copper Taylor test at 190 m/s, axisymmetric (options/scenes/taylor.opts): the larger
+          of |Lf| and |Df| errors against the experiment (centres), 8/16/32 cells per diameter;
+          and its numerical error against the method's own finest run.
+Cost: wall time of the stepping (s) and particle-steps; memory as bytes per particle x particles.
+Writes OUT/speed_accuracy.csv and OUT/speed_accuracy_<problem>.png (log-log, one line per method,
+the Pareto front as black rings: no other run is both cheaper and more accurate). --quick runs two
+methods on two resolutions of the mms problem only (the suite's smoke test).
+"""
+import argparse
+import csv
+import json
+import os
+import subprocess
+import tempfile
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+TAYLOR = (25.4e-3, 7.62e-3, 16.21e-3, 13.56e-3)  # L0, D0, Lf, Df (verification.md 4, copper 190 m/s)
+TRANSFERS = {"flip": [], "apic": ["-mpm_transfer", "apic"], "xpic2": ["-mpm_transfer", "xpic", "-mpm_xpic_order", "2"]}
+
+
+def run(burst, deck, extra):
+    with tempfile.TemporaryDirectory() as out:
+        cmd = [burst, "-options_file", os.path.join(ROOT, deck), "-output_dir", out, "-progress", "false", "-output_interval", "0", *extra]
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+        if proc.returncode:
+            return None
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f)
+
+
+def pareto(points):
+    """Indices of the points that no other point beats in both cost and error."""
+    return [i for i, (c, e) in enumerate(points) if not any(c2 <= c and e2 <= e and (c2, e2) != (c, e) for c2, e2 in points)]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("--burst", default=os.path.join(ROOT, "build/burst"))
+    p.add_argument("--out", default=os.path.join(ROOT, "doc/figures"))
+    p.add_argument("--problems", default="mms,axisym,taylor")
+    p.add_argument("--taylor-levels", default="8,16", help="cells per diameter of the Taylor runs")
+    p.add_argument("--quick", action="store_true")
+    p.add_argument("--cost", default="particle_steps", choices=["particle_steps", "wall_s"],
+                   help="x axis: particle-steps (deterministic) or the stepping wall time (meaningful on an unloaded machine)")
+    p.add_argument("--replot", action="store_true", help="redraw the charts from OUT/speed_accuracy.csv without running")
+    a = p.parse_args()
+    os.makedirs(a.out, exist_ok=True)
+    shapes = ["linear", "ugimp", "cpgimp", "bspline2"]
+    problems = ["mms"] if a.quick else a.problems.split(",")
+    rows = []
+    if a.replot:
+        with open(os.path.join(a.out, "speed_accuracy.csv")) as f:
+            rows = [{k: (v if k in ("problem", "shape", "transfer", "scheme") else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
+        problems = sorted({r["problem"] for r in rows}, key=["mms", "axisym", "taylor"].index)
+    for prob in ([] if a.replot else problems):
+        if a.quick:
+            methods = [("cpgimp", "flip", "usl"), ("bspline2", "apic", "usl")]
+            levels = [8, 16]
+        elif prob == "taylor":
+            methods = [(s, "flip", "musl") for s in shapes] + [("cpgimp", "apic", "musl"), ("cpgimp", "xpic2", "musl")]
+            levels = [int(v) for v in a.taylor_levels.split(",")]
+        else:
+            methods = [(s, t, "usl") for s in shapes for t in TRANSFERS]
+            levels = [8, 16, 32]
+        for shape, transfer, scheme in methods:
+            finest = None
+            for n in reversed(levels):
+                if prob in ("mms", "axisym"):
+                    deck = "tests/decks/mms_axis_aligned.opts" if prob == "mms" else "tests/decks/mms_axisymmetric.opts"
+                    extra = ["-grid_cells", f"{n},{n}", "-mpm_dt", "2e-5"]
+                else:
+                    deck = "options/scenes/taylor.opts"
+                    extra = ["-taylor_cells_per_diameter", str(n), "-mpm_cfl", "0.3" if transfer == "apic" and shape == "linear" else "0.4"]
+                s = run(a.burst, deck, ["-mpm_shape_type", shape, "-mpm_scheme", scheme, *TRANSFERS[transfer], *extra])
+                if s is None:
+                    print(f"{prob} {shape} {transfer} {scheme} n={n}: failed (unstable or stopped)", flush=True)
+                    continue
+                if prob == "taylor":
+                    t = s["taylor"]
+                    el = (t["Lf_centres"] - TAYLOR[2]) / TAYLOR[2]
+                    ed = (t["Df_centres"] - TAYLOR[3]) / TAYLOR[3]
+                    error = max(abs(el), abs(ed))
+                    if finest is None:
+                        finest = (t["Lf_centres"], t["Df_centres"])
+                    numerical = max(abs(t["Lf_centres"] - finest[0]) / finest[0], abs(t["Df_centres"] - finest[1]) / finest[1])
+                else:
+                    error, numerical = s["displacement_error_rms"], s["displacement_error_rms"]
+                row = dict(problem=prob, shape=shape, transfer=transfer, scheme=scheme, resolution=n, error=error, numerical_error=numerical,
+                           wall_s=s["wall_time_s"], particle_steps=s["steps"] * s["particles"], memory_bytes=s["bytes_per_particle"] * s["particles"])
+                rows.append(row)
+                print(f"{prob} {shape} {transfer} {scheme} n={n}: error {error:.3e}, numerical {numerical:.3e}, wall {s['wall_time_s']:.2f} s, {row['particle_steps']:.3g} particle-steps", flush=True)
+    path = os.path.join(a.out, "speed_accuracy.csv")
+    if not a.replot:
+        with open(path, "w", newline="") as f:
+            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w.writeheader()
+            w.writerows(rows)
+        print(f"wrote {path}")
+    for prob in problems:
+        sub = [r for r in rows if r["problem"] == prob]
+        fig, ax = plt.subplots(figsize=(6.5, 4.5))
+        for key in sorted({(r["shape"], r["transfer"]) for r in sub}):
+            pts = sorted((r[a.cost], r["error"]) for r in sub if (r["shape"], r["transfer"]) == key)
+            ax.loglog([c for c, _ in pts], [e for _, e in pts], "o-" if key[1] == "flip" else ("s--" if key[1] == "apic" else "^:"), ms=4, label=f"{key[0]} {key[1]}")
+        pts = [(r[a.cost], r["error"]) for r in sub]
+        front = pareto(pts)
+        ax.loglog([pts[i][0] for i in front], [pts[i][1] for i in front], "ko", mfc="none", ms=10, label="Pareto front")
+        ax.set_xlabel("particle-steps" if a.cost == "particle_steps" else "wall time of the stepping (s, 1 core)")
+        ax.set_ylabel({"mms": "RMS displacement error (m)", "axisym": "RMS displacement error (m)", "taylor": "max(|Lf|, |Df|) error vs experiment"}[prob])
+        ax.set_title({"mms": "2-D manufactured solution, 8/16/32 cells", "axisym": "axisymmetric manufactured solution, 8/16/32 cells",
+                      "taylor": "Taylor, Cu 190 m/s, axisymmetric, 8/16/32 cells per D0"}[prob], fontsize=9)
+        ax.legend(fontsize=6, ncol=2)
+        ax.grid(True, which="both", alpha=0.3)
+        fig.tight_layout()
+        png = os.path.join(a.out, f"speed_accuracy_{prob}.png")
+        fig.savefig(png, dpi=110)
+        print(f"wrote {png}")
+
+
+if __name__ == "__main__":
+    main()
