@@ -25,7 +25,7 @@ public:
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {
     PetscFunctionBeginUser;
-    PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-gamma", "Ideal gas: ratio of specific heats gamma = c_p/c_v (-), > 1", &gamma, 1, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-gamma", "Ideal gas: ratio of specific heats gamma = c_p/c_v (-), > 1 and <= 100 (gases 1-5/3)", &gamma, 1, 100, PETSC_TRUE));
     PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-cv", "Ideal gas: specific heat at constant volume c_v (J/(kg K)), > 0", &cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

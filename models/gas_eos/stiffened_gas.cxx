@@ -28,7 +28,7 @@ public:
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {
     PetscFunctionBeginUser;
-    PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-gamma", "Stiffened gas: ratio of specific heats gamma (-), > 1", &gamma, 1, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-gamma", "Stiffened gas: ratio of specific heats gamma (-), > 1 and <= 100 (fits of liquids up to ~7)", &gamma, 1, 100, PETSC_TRUE));
     PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-cv", "Stiffened gas: specific heat at constant volume c_v (J/(kg K)), > 0", &cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-p_inf", "Stiffened gas: stiffening pressure p_inf (Pa), >= 0", &p_inf, 0, PETSC_MAX_REAL, PETSC_FALSE));
     PetscFunctionReturn(PETSC_SUCCESS);

@@ -7,7 +7,7 @@
 // momentum dm u_s and the energy dm (c_v,s T_s + Q); the solid loses the mass, its momentum and its
 // energy; the pressure equation sees the volume that the conversion creates. On the particle side
 // each reactant particle loses the burnt fraction of its cell's solid (through the nodes), and a
-// particle below -coupling_burnout_fraction of its seeded mass, or a burning one crushed below
+// particle below -coupling_burnout_fraction of its seeded mass, or one crushed below
 // -coupling_burnout_volume_ratio of its volume (det F), burns out: what is left of it goes to the
 // product gas of its cell and the particle is removed and counted.
 #include "coupling_impl.hpp"
@@ -30,7 +30,7 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", c.burnout, &c.burnout, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_burnout_fraction", c.burnout, 0, 1, PETSC_TRUE));
-  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A burning particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", c.burnout_volume_ratio, &c.burnout_volume_ratio, nullptr));
+  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", c.burnout_volume_ratio, &c.burnout_volume_ratio, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_burnout_volume_ratio", c.burnout_volume_ratio, 0, 1, PETSC_FALSE));
   PetscOptionsEnd();
   bool any = false;
@@ -99,7 +99,7 @@ PetscErrorCode CouplingBurnHelp(Simulation &sim)
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", burnout, &burnout, nullptr));
-  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A burning particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", volume_ratio, &volume_ratio, nullptr));
+  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", volume_ratio, &volume_ratio, nullptr));
   PetscOptionsEnd();
   for (const auto &mat : sim.materials) {
     BurnModel        *model;
@@ -291,7 +291,8 @@ struct BurnParticles {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       PetscReal f = 0;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { f += N * phi[index(i, j, k) * c.nsolid + s]; });
-      if (f <= 0) continue;
+      const PetscReal J = Mat3CMap(F + 9 * p).determinant(); // a crushed reactant burns out, burning this step or not
+      if (f <= 0 && J >= c.burnout_volume_ratio) continue;
       const PetscReal keep = PetscMax(1 - f, 0.0);
       PetscReal       v2   = 0;
       for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
@@ -302,7 +303,6 @@ struct BurnParticles {
       vol[p] *= keep;
       vol0[p] *= keep;
       energy[p] *= keep;
-      const PetscReal J = Mat3CMap(F + 9 * p).determinant();
       if (mass[p] < c.burnout * c.seed_mass[s] || J < c.burnout_volume_ratio) {
         // burnt out: the rest burns into the product in the particle's cell (ice.md 2.4's bookkeeping)
         remove[p] = 1;
