@@ -45,6 +45,18 @@ def cpu_name():
     return platform.processor()
 
 
+def run_burst(binary, ranks, options):
+    """One run on `ranks` ranks in a scratch output folder; returns (summary.json, the finished process)."""
+    with tempfile.TemporaryDirectory() as out:
+        cmd = ([*MPIEXEC, "-n", str(ranks)] if ranks > 1 else []) + [binary, *options, "-output_dir", out]
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+        if proc.returncode:
+            print(proc.stdout[-2000:], proc.stderr[-2000:])
+            raise SystemExit(f"benchmark run failed: {' '.join(cmd)}")
+        with open(os.path.join(out, "summary.json")) as f:
+            return json.load(f), proc
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__)
     p.add_argument("--burst", required=True)
@@ -85,14 +97,7 @@ def main():
                 else:
                     extra += ["-dim", "3", "-grid_lower", "0,0,0", "-grid_upper", "1,1,1", "-grid_cells", f"{n},{n},{n}",
                               "-block_lower", "0.1,0.1,0.1", "-block_upper", "0.9,0.9,0.9", "-block_velocity", "20,10,5"]
-                with tempfile.TemporaryDirectory() as out:
-                    cmd = ([*MPIEXEC, "-n", str(ranks)] if ranks > 1 else []) + [args.burst, "-options_file", deck, "-output_dir", out, *extra]
-                    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-                    if proc.returncode:
-                        print(proc.stdout[-2000:], proc.stderr[-2000:])
-                        raise SystemExit(f"benchmark run failed: {' '.join(cmd)}")
-                    with open(os.path.join(out, "summary.json")) as f:
-                        s = json.load(f)
+                s, _ = run_burst(args.burst, ranks, ["-options_file", deck, *extra])
                 rate = s["particle_steps_per_second_per_core"]
                 rows.append(dict(dim=dim, shape=shape, ranks=ranks, particles=s["particles"], rate=rate, bytes=s["bytes_per_particle"]))
                 print(f"{dim:>3} {shape:>9} {ranks:>5} {s['particles']:>10} {s['steps']:>5} {rate / 1e6:>19.2f} {1e9 / rate:>12.1f} {s['bytes_per_particle']:>10}")
@@ -145,7 +150,6 @@ def stress_benchmark(args):
         stress_time = next(float(line.split()[3]) for line in proc.stdout.splitlines() if line.startswith("MPM_Stress"))
         per_update = 1e9 * stress_time / (s["particles"] * s["steps"])
         per_step = 1e9 / s["particle_steps_per_second"]
-        plastic = next((line for line in proc.stdout.splitlines() if line.startswith("MPM_Stress")), "")
         print(f"  {label}: {s['particles']} particles, stress update {per_update:.0f} ns, whole particle-step {per_step:.0f} ns")
 
 
@@ -156,14 +160,7 @@ def taylor_args(steps):
 def taylor_benchmark(args):
     steps = 10 if args.quick else args.taylor_steps
     for ranks in [int(r) for r in args.ranks.split(",")]:
-        with tempfile.TemporaryDirectory() as out:
-            cmd = ([*MPIEXEC, "-n", str(ranks)] if ranks > 1 else []) + [args.burst, *taylor_args(steps), "-output_dir", out]
-            proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-            if proc.returncode:
-                print(proc.stdout[-2000:], proc.stderr[-2000:])
-                raise SystemExit(f"benchmark run failed: {' '.join(cmd)}")
-            with open(os.path.join(out, "summary.json")) as f:
-                s = json.load(f)
+        s, _ = run_burst(args.burst, ranks, taylor_args(steps))
         print(f"3-D Taylor impact step (copper, JC + Mie-Gruneisen, rigid anvil, MUSL, cpGIMP), {ranks} rank(s): {s['particles']} particles, "
               f"{s['steps']} steps, {1e9 / s['particle_steps_per_second_per_core']:.0f} ns per particle-step per core, {s['bytes_per_particle']} bytes per particle")
 

@@ -30,7 +30,11 @@ import os
 import platform
 import shlex
 import subprocess
+import sys
 import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from bench import cpu_name  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DEFAULT_LAUNCHER = "mpiexec --allow-run-as-root --oversubscribe -x OMP_NUM_THREADS=1 -n {n}"
@@ -46,17 +50,6 @@ SCENES = {
                    "-monitor_interval", "100000"], 100,
                   lambda n: []),
 }
-
-
-def cpu_name():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor()
 
 
 def run(args, n, options, log=False):

@@ -470,10 +470,12 @@ def exploding(args):
     check("|fragments' initial mass - steel mass| / steel mass (the charge is not a fragment)", abs(s["initial_mass"] - steel) / steel, 0.1, failures)
     if args.fragments:
         n, lo, hi = s["fragment_count"], s["grady_shear"]["sector"], s["grady_tension"]["sector"]
-        print(f"  fragments {n} against the Grady-Hightower band [{lo:.2f}, {hi:.2f}] (paper: 6-7 on the quarter)")
-        ok = 1 <= n
+        # the paper's own count (6-7) lies two above the band at its expansion velocity: a count more
+        # than two outside the band is a change of behaviour, not scatter (measured 5 in [2.9, 4.4])
+        ok = lo - 2 <= n <= hi + 2
+        print(f"  fragments {n} against the Grady-Hightower band [{lo:.2f}, {hi:.2f}] +- 2 (paper: 6-7 on the quarter) {'OK' if ok else 'FAIL'}")
         if not ok:
-            failures.append("no fragment")
+            failures.append("fragment count outside the Grady band +- 2")
     finish(f"exploding[{args.cells} cells, {args.ranks} rank(s)]", failures)
 
 

@@ -19,6 +19,29 @@
 
 namespace burst {
 
+// The burn-out thresholds (set-up and -help read the same options).
+static PetscErrorCode BurnoutOptions(MPI_Comm comm, PetscReal *fraction, PetscReal *volume_ratio)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(comm, "", "Burning", "Coupling");
+  PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", *fraction, fraction, nullptr));
+  PetscCall(CheckRange(comm, "-coupling_burnout_fraction", *fraction, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", *volume_ratio, volume_ratio, nullptr));
+  PetscCall(CheckRange(comm, "-coupling_burnout_volume_ratio", *volume_ratio, 0, 1, PETSC_FALSE));
+  PetscOptionsEnd();
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Adds a converted mass (per cell volume, dr > 0 gained, < 0 lost) with its velocity u and specific
+// energy e to material m's sources in local cell idx.
+static inline void AddConversion(IceSolver &ice, PetscInt idx, PetscInt m, PetscReal dr, const PetscReal u[], PetscReal e)
+{
+  const PetscInt n = ice.nmat;
+  ice.mass_source[idx * n + m] += dr;
+  for (PetscInt d = 0; d < ice.dim; ++d) ice.momentum_source[(idx * n + m) * 3 + d] += dr * u[d];
+  ice.energy_source[idx * n + m] += dr * e;
+}
+
 PetscErrorCode CouplingBurnSetUp(Simulation &sim)
 {
   Coupling  &c   = *sim.coupling;
@@ -27,12 +50,7 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   c.burn.resize(c.nsolid);
   c.product.assign(c.nsolid, -1);
   c.seed_mass.assign(c.nsolid, 0);
-  PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
-  PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", c.burnout, &c.burnout, nullptr));
-  PetscCall(CheckRange(sim.comm, "-coupling_burnout_fraction", c.burnout, 0, 1, PETSC_TRUE));
-  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", c.burnout_volume_ratio, &c.burnout_volume_ratio, nullptr));
-  PetscCall(CheckRange(sim.comm, "-coupling_burnout_volume_ratio", c.burnout_volume_ratio, 0, 1, PETSC_FALSE));
-  PetscOptionsEnd();
+  PetscCall(BurnoutOptions(sim.comm, &c.burnout, &c.burnout_volume_ratio));
   bool any = false;
   for (size_t m = 0; m < sim.materials.size(); ++m) {
     const PetscInt s = c.solid_of[m];
@@ -97,10 +115,7 @@ PetscErrorCode CouplingBurnHelp(Simulation &sim)
   PetscReal burnout = 1e-3, volume_ratio = 0.5;
   char      product[256] = "";
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Burning", "Coupling");
-  PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", burnout, &burnout, nullptr));
-  PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", volume_ratio, &volume_ratio, nullptr));
-  PetscOptionsEnd();
+  PetscCall(BurnoutOptions(sim.comm, &burnout, &volume_ratio));
   for (const auto &mat : sim.materials) {
     BurnModel        *model;
     const std::string pre = std::string(mat->Name()) + "_";
@@ -178,10 +193,8 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           BurnOutput out;
           PetscCall(c.burn[s]->Evaluate(in, &out));
           if (!(out.dm > 0)) continue;
-          const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s;
-          ice.mass_source[idx * n + m] -= dr;
-          for (PetscInt d = 0; d < dim; ++d) ice.momentum_source[(idx * n + m) * 3 + d] -= dr * cell[ice.Offset(m, icef::vel + d)];
-          ice.energy_source[idx * n + m] -= dr * cv * Ts;
+          const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s, *u = cell + ice.Offset(m, icef::vel);
+          AddConversion(ice, idx, m, -dr, u, cv * Ts);
           // The products leave the burning surface on its gas side: into the neighbours across the
           // faces the outward normal -grad M points through, in proportion to |n_d| and to the room
           // the gases have there (their volume fraction), the rest into the burning cell itself.
@@ -206,10 +219,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           for (PetscInt d = 0; d <= dim; ++d) {
             const PetscReal share = total > 0 ? weight[d] / total : (d == dim ? 1.0 : 0.0); // no room anywhere: here
             if (share == 0) continue;
-            const PetscInt t = target[d];
-            ice.mass_source[t * n + g] += share * dr;
-            for (PetscInt e = 0; e < dim; ++e) ice.momentum_source[(t * n + g) * 3 + e] += share * dr * cell[ice.Offset(m, icef::vel + e)];
-            ice.energy_source[t * n + g] += share * dr * (cv * Ts + out.Q);
+            AddConversion(ice, target[d], g, share * dr, u, cv * Ts + out.Q);
           }
           c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
           c.burnt_mass += out.dm;
@@ -308,16 +318,10 @@ struct BurnParticles {
         remove[p] = 1;
         PetscInt ijk[3] = {0, 0, 0};
         for (int d = 0; d < DIM; ++d) ijk[d] = PetscMin(PetscMax((PetscInt)std::floor((x[DIM * p + d] - ice.lower[d]) / ice.h[d]), ice.xs[d]), ice.xs[d] + ice.xm[d] - 1);
-        const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), nm = ice.nmat, m = c.first + s, gas = c.product[s];
+        const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), m = c.first + s;
         const PetscReal dr = mass[p] / V, cv = ice.materials[m].eos->cv;
-        ice.mass_source[idx * nm + m] -= dr;
-        ice.mass_source[idx * nm + gas] += dr;
-        for (int d = 0; d < DIM; ++d) {
-          ice.momentum_source[(idx * nm + m) * 3 + d] -= dr * v[DIM * p + d];
-          ice.momentum_source[(idx * nm + gas) * 3 + d] += dr * v[DIM * p + d];
-        }
-        ice.energy_source[idx * nm + m] -= dr * cv * T[p];
-        ice.energy_source[idx * nm + gas] += dr * (cv * T[p] + c.burn[s]->HeatOfReaction());
+        AddConversion(ice, idx, m, -dr, v + DIM * p, cv * T[p]);
+        AddConversion(ice, idx, c.product[s], dr, v + DIM * p, cv * T[p] + c.burn[s]->HeatOfReaction());
         c.burnt_mass += mass[p];
         sim.diag.removed_mass += mass[p];
         sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
