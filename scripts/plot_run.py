@@ -419,6 +419,70 @@ def plot_burst(outdir, summary):
     return out
 
 
+def plot_burst3d(outdir, summary):
+    """3-D runs: the fragments seen in perspective, and the gas in the planes z = 0 (across the
+    charge) and y = 0 (along the axis, through the wall and the cap), products volume fraction over
+    the pressure, which shows where the gas escapes."""
+    ppath, _ = last_particle_file(outdir)
+    step = int(re.fullmatch(r"particles_(\d+)\.h5", os.path.basename(ppath)).group(1))
+    gpath = os.path.join(outdir, "gas_%06d.h5" % step)
+    if not os.path.exists(gpath):
+        return None
+    data, time, _ = read_particles(ppath)
+    x = data["coordinates"]
+    n, dim = x.shape
+    if dim != 3:
+        return None
+    frag = as_rows(data["fragment"], n)[:, 0] if "fragment" in data else np.full(n, -1)
+    material = as_rows(data["material"], n)[:, 0] if "material" in data else np.zeros(n)
+    with h5py.File(gpath, "r") as h:
+        cells = h["cells"]
+        p = np.asarray(cells["pressure"])  # [z][y][x]
+    lower = summary.get("grid_lower", [0, 0, 0])
+    upper = summary.get("grid_upper", [1, 1, 1])
+    fig = plt.figure(figsize=(15, 5.2), dpi=DPI)
+    ax = fig.add_subplot(1, 3, 1, projection="3d")
+    solid = material == 0  # the container (the first material)
+    counted = solid & (frag >= 0)
+    loose = solid & (frag < 0)
+    ax.scatter(x[loose, 0], x[loose, 1], x[loose, 2], s=0.3, c="0.65", linewidths=0, depthshade=False)
+    if counted.any():
+        ax.scatter(x[counted, 0], x[counted, 1], x[counted, 2], s=0.8, c=frag[counted] % 20, cmap="tab20", vmin=0, vmax=19, linewidths=0, depthshade=True)
+    ax.set_xlim(lower[0], upper[0])
+    ax.set_ylim(lower[1], upper[1])
+    ax.set_zlim(lower[2], upper[2])
+    ax.set_box_aspect((upper[0] - lower[0], upper[1] - lower[1], upper[2] - lower[2]))
+    ax.view_init(elev=22, azim=-130)
+    ax.set_xlabel("x [m]", fontsize=8)
+    ax.set_ylabel("y [m]", fontsize=8)
+    ax.set_zlabel("z [m]", fontsize=8)
+    ax.tick_params(labelsize=7)
+    count = summary.get("fragment_count")
+    ax.set_title("container%s (grey: failed or debris)" % ("" if count is None else ", %d fragments" % count), fontsize=10)
+    norm = colors.LogNorm(vmin=max(p.min(), 1e4), vmax=max(p.max(), 1e5))
+    for panel, (cut, title) in enumerate(((p[0], "gas pressure at z = 0 (mid-length)"), (p[:, 0, :], "gas pressure at y = 0 (along the axis)"))):
+        a = fig.add_subplot(1, 3, panel + 2)
+        extent = [lower[0], upper[0], lower[1], upper[1]] if panel == 0 else [lower[0], upper[0], lower[2], upper[2]]
+        im = a.imshow(cut, origin="lower", extent=extent, cmap="Blues", norm=norm, interpolation="nearest")
+        # particles within a cell of the plane
+        h = (upper[2] - lower[2]) / p.shape[0] if panel == 0 else (upper[1] - lower[1]) / p.shape[1]
+        near = solid & (np.abs(x[:, 2 if panel == 0 else 1] - (lower[2] if panel == 0 else lower[1])) < h)
+        a.scatter(x[near, 0], x[near, 1 if panel == 0 else 2], s=0.6, c=np.where(frag[near] >= 0, frag[near] % 20, -1), cmap="tab20", vmin=-1, vmax=19, linewidths=0)
+        a.set_xlim(extent[0], extent[1])
+        a.set_ylim(extent[2], extent[3])
+        a.set_aspect("equal")
+        a.set_xlabel("x [m]")
+        a.set_ylabel("y [m]" if panel == 0 else "z [m]")
+        a.set_title(title, fontsize=10)
+        cax = make_axes_locatable(a).append_axes("right", size="4%", pad=0.05)
+        fig.colorbar(im, cax=cax, label="pressure [Pa]")
+    fig.suptitle("%s: t = %.4g s" % (summary.get("scene") or "", time), fontsize=11)
+    out = os.path.join(outdir, "burst3d.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
 def plot_histories(outdir, summary):
     """Largest gas pressure and the container's expansion velocity against time."""
     table = np.atleast_1d(np.genfromtxt(os.path.join(outdir, "monitor.csv"), delimiter=",", names=True))
@@ -506,7 +570,7 @@ def main(argv=None):
         if png:
             print("wrote %s" % png)
     if gas_png:
-        for png in (plot_burst(outdir, summary), plot_histories(outdir, summary)):
+        for png in (plot_burst(outdir, summary), plot_burst3d(outdir, summary), plot_histories(outdir, summary)):
             if png:
                 print("wrote %s" % png)
     png, problem = plot_energy(outdir, summary)

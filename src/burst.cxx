@@ -42,7 +42,6 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.ev_monitor));
   PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.ev_loads));
   PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.ev_output));
-  PetscCall(PetscLogEventRegister("Coupling", id, &sim.ev_coupling));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

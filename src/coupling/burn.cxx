@@ -144,7 +144,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
   PetscFunctionBeginUser;
   ice.has_mass_source = !c.burnt_fraction.empty();
   if (!ice.has_mass_source) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_burn, 0, 0, 0, 0));
   std::fill(ice.mass_source.begin(), ice.mass_source.end(), 0);
   std::fill(ice.momentum_source.begin(), ice.momentum_source.end(), 0);
   std::fill(ice.energy_source.begin(), ice.energy_source.end(), 0);
@@ -257,7 +257,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
       for (PetscInt s = 0; s < c.nsolid; ++s) c.burnt_fraction[idx * c.nsolid + s] = src[idx * q + 5 * n + s];
     PetscCall(VecRestoreArray(c.source_local, &src));
   }
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_burn, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -339,7 +339,7 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
   if (c.burnt_fraction.empty()) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_burn_particles, 0, 0, 0, 0));
   // nodal fraction: phi_n = w_n sum of the burnt fractions of the node's cells, with the node ->
   // cell weights of the projection. A particle then loses sum_c W_pc phi_c of its mass, W_pc its
   // projection weight to cell c, and the particles of a cell lose exactly the mass that burnt
@@ -374,7 +374,7 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   PetscCall(RemoveParticles(sim, remove, &removed));
   c.burnt_particles += removed;
   if (removed) PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", sim.step, removed));
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_burn_particles, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

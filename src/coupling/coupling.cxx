@@ -161,7 +161,7 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   IceSolver   &ice = *sim.ice;
   PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.coupling->ev_project, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(c.mass_local));
   PetscCall(VecGetArray(c.mass_local, &nodes));
   ProjectKernel kernel{sim, c, nodes};
@@ -201,7 +201,7 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(VecRestoreArray(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice));
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.coupling->ev_project, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -214,7 +214,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   PetscInt           xs[3], xm[3];
   const PetscInt     dim = ice.dim, dof = c.IncDof(dim);
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.coupling->ev_pressure, 0, 0, 0, 0));
   // nodal pressure: the mean of the cells around each owned node (ghost cells carry the boundary
   // conditions), then to the ghost nodes
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
@@ -235,7 +235,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   ParticleKernel kernel{sim, c, a, true};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(c.inc_local, &a));
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.coupling->ev_pressure, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,7 +248,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   const LocalNodeIndex index(sim.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.coupling->ev_solid_velocity, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
   PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
   PetscCall(IceGetLocalArray(ice, &a));
@@ -271,7 +271,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice)); // the increments of ghost cells are taken against these
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.coupling->ev_solid_velocity, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -285,7 +285,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscInt           xs[3], xm[3];
   const PetscInt     dim = ice.dim, dof = c.IncDof(dim), vdof = g.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.coupling->ev_increments, 0, 0, 0, 0));
   // per owned node and velocity field: the solid-mass weighted mean of the increments of the cells
   // around it, over the solids that move in that field
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
@@ -333,7 +333,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
   PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.coupling->ev_increments, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -341,12 +341,12 @@ PetscErrorCode CouplingHeatToParticles(Simulation &sim)
 {
   const PetscScalar *inc;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.coupling->ev_heat, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(sim.coupling->inc_local, &inc));
   ParticleKernel kernel{sim, *sim.coupling, inc, false};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(sim.coupling->inc_local, &inc));
-  PetscCall(PetscLogEventEnd(sim.ev_coupling, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.coupling->ev_heat, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -355,6 +355,15 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   Coupling  &c   = *sim.coupling;
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
+  PetscClassId id;
+  PetscCall(PetscClassIdRegister("Coupling", &id));
+  PetscCall(PetscLogEventRegister("Cpl_Project", id, &c.ev_project));
+  PetscCall(PetscLogEventRegister("Cpl_Burn", id, &c.ev_burn));
+  PetscCall(PetscLogEventRegister("Cpl_BurnParticles", id, &c.ev_burn_particles));
+  PetscCall(PetscLogEventRegister("Cpl_PressureToPart", id, &c.ev_pressure));
+  PetscCall(PetscLogEventRegister("Cpl_SolidVelocity", id, &c.ev_solid_velocity));
+  PetscCall(PetscLogEventRegister("Cpl_IncrementsToNode", id, &c.ev_increments));
+  PetscCall(PetscLogEventRegister("Cpl_HeatToParticles", id, &c.ev_heat));
   PetscCheck(!sim.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;

@@ -35,6 +35,8 @@ struct Coupling {
   Vec                                     phi_global = nullptr, phi_local = nullptr;
   DM                                      da_source = nullptr; // cells: the burn sources, ghosts added to their owners
   Vec                                     source_global = nullptr, source_local = nullptr;
+  // -log_view events, one per phase of the coupled step (ice.md 1.2)
+  PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0;
   ~Coupling()
   {
     VecDestroy(&mass_global);
