@@ -9,6 +9,9 @@ through burst, interrupts and continues them, and compares with the uninterrupte
            by id and gas fields agree to --tol (round-off of the summation order)
   signal   SIGUSR1 / SIGTERM (or -max_wall_time) during a run: a checkpoint, a clean stop (exit 0) with
            a message, and the restart reaches the uninterrupted answer bit for bit
+  wallint  -checkpoint_wall_interval: a run writes checkpoints by the clock (two or more, at increasing
+           steps); a restart from the oldest reaches the same last step bit for bit (particle fields and
+           the summary energies, mass and step count)
   kill     SIGKILL while a checkpoint is being written (held open with -checkpoint_debug_delay): the
            previous checkpoint and snapshots are intact and the restart reaches the uninterrupted answer
   bad      a missing, truncated or mismatched checkpoint stops with a message naming the file and what
@@ -214,6 +217,23 @@ def signal_test(args):
     finish(f"checkpoint_signal_{args.signal}", failures)
 
 
+def wall_interval(args):
+    failures = []
+    extra = ["-output_interval", str(args.n), "-monitor_interval", "100", "-mpm_dt", args.slow_dt, *args.extra.split()]
+    ref = fresh(os.path.join(args.out, "wallint"))
+    run(args, args.deck, ref, [*extra, "-max_steps", str(args.n), "-checkpoint_wall_interval", "0.5", "-checkpoint_keep", "1000"], args.ranks)
+    steps = sorted(int(n[len("checkpoint_"):-len(".h5")]) for n in os.listdir(ref) if n.startswith("checkpoint_") and n.endswith(".h5"))
+    print(f"  checkpoints by the clock at steps {steps}")
+    if len(steps) < 2:
+        finish("checkpoint_wall_interval", ["fewer than two checkpoints: the run was too fast for the 0.5 s interval (raise --n)"])
+    got = fresh(os.path.join(args.out, "wallint_restart"))
+    first = os.path.join(got, f"checkpoint_{steps[0]:06d}.h5")
+    shutil.copy(os.path.join(ref, f"checkpoint_{steps[0]:06d}.h5"), first)
+    run(args, args.deck, got, [*extra, "-max_steps", str(args.n), "-restart", first], args.ranks)
+    compare_close(ref, got, args.n, 0.0, failures)
+    finish("checkpoint_wall_interval", failures)
+
+
 def kill_test(args):
     failures = []
     extra = ["-output_interval", str(args.k), "-monitor_interval", "5", *args.extra.split()]
@@ -296,7 +316,7 @@ def bad(args):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("check", choices=["same", "ranks", "signal", "kill", "bad"])
+    p.add_argument("check", choices=["same", "ranks", "signal", "wallint", "kill", "bad"])
     p.add_argument("--burst", required=True)
     p.add_argument("--deck", default="options/scenes/ring2d.opts")
     p.add_argument("--out", default="checkpoint_tests")
@@ -311,7 +331,7 @@ def main():
     args = p.parse_args()
     args.out = os.path.join(os.path.abspath(args.out), os.environ.get("BURST_CHECKPOINT_TEST", args.check))  # parallel tests apart
     os.makedirs(args.out, exist_ok=True)
-    {"same": same, "ranks": ranks, "signal": signal_test, "kill": kill_test, "bad": bad}[args.check](args)
+    {"same": same, "ranks": ranks, "signal": signal_test, "wallint": wall_interval, "kill": kill_test, "bad": bad}[args.check](args)
 
 
 if __name__ == "__main__":
