@@ -440,14 +440,15 @@ def plot_burst3d(outdir, summary):
         p = np.asarray(cells["pressure"])  # [z][y][x]
     lower = summary.get("grid_lower", [0, 0, 0])
     upper = summary.get("grid_upper", [1, 1, 1])
-    fig = plt.figure(figsize=(15, 5.2), dpi=DPI)
+    fig = plt.figure(figsize=(17, 5.2), dpi=DPI)
+    fig.subplots_adjust(wspace=0.35)
     ax = fig.add_subplot(1, 3, 1, projection="3d")
     solid = material == 0  # the container (the first material)
     counted = solid & (frag >= 0)
     loose = solid & (frag < 0)
     ax.scatter(x[loose, 0], x[loose, 1], x[loose, 2], s=0.3, c="0.65", linewidths=0, depthshade=False)
     if counted.any():
-        ax.scatter(x[counted, 0], x[counted, 1], x[counted, 2], s=0.8, c=frag[counted] % 20, cmap="tab20", vmin=0, vmax=19, linewidths=0, depthshade=True)
+        ax.scatter(x[counted, 0], x[counted, 1], x[counted, 2], s=0.8, c=frag[counted] % 10, cmap="tab10", vmin=0, vmax=9, linewidths=0, depthshade=True)
     ax.set_xlim(lower[0], upper[0])
     ax.set_ylim(lower[1], upper[1])
     ax.set_zlim(lower[2], upper[2])
@@ -463,11 +464,13 @@ def plot_burst3d(outdir, summary):
     for panel, (cut, title) in enumerate(((p[0], "gas pressure at z = 0 (mid-length)"), (p[:, 0, :], "gas pressure at y = 0 (along the axis)"))):
         a = fig.add_subplot(1, 3, panel + 2)
         extent = [lower[0], upper[0], lower[1], upper[1]] if panel == 0 else [lower[0], upper[0], lower[2], upper[2]]
-        im = a.imshow(cut, origin="lower", extent=extent, cmap="Blues", norm=norm, interpolation="nearest")
+        im = a.imshow(cut, origin="lower", extent=extent, cmap="Greys", norm=norm, interpolation="nearest")
         # particles within a cell of the plane
         h = (upper[2] - lower[2]) / p.shape[0] if panel == 0 else (upper[1] - lower[1]) / p.shape[1]
         near = solid & (np.abs(x[:, 2 if panel == 0 else 1] - (lower[2] if panel == 0 else lower[1])) < h)
-        a.scatter(x[near, 0], x[near, 1 if panel == 0 else 2], s=0.6, c=np.where(frag[near] >= 0, frag[near] % 20, -1), cmap="tab20", vmin=-1, vmax=19, linewidths=0)
+        kept = near & (frag >= 0)
+        a.scatter(x[near & (frag < 0), 0], x[near & (frag < 0), 1 if panel == 0 else 2], s=1.2, c="tab:red", linewidths=0)
+        a.scatter(x[kept, 0], x[kept, 1 if panel == 0 else 2], s=2.0, c=frag[kept] % 10, cmap="tab10", vmin=0, vmax=9, linewidths=0)
         a.set_xlim(extent[0], extent[1])
         a.set_ylim(extent[2], extent[3])
         a.set_aspect("equal")
