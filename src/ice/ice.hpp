@@ -98,6 +98,7 @@ struct IceSolver {
   PetscInt  advection_order = 2;
   PetscBool compatible_fluxes = PETSC_TRUE;
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
+  PetscBool drag_heating = PETSC_TRUE;         // with conservative_energy: the drag's dissipated kinetic energy becomes heat
   PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
   PetscReal cfl = 0.25;
   PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit

@@ -9,7 +9,8 @@ namespace burst {
 PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
 {
   PetscScalar *a;
-  PetscReal    local = PETSC_MAX_REAL;
+  PetscReal    local = PETSC_MAX_REAL, limit_sound = 0, limit_speed = 0, limit_theta = 0, limit_T = 0;
+  PetscInt     limit[4] = {-1, -1, -1, -1}; // the cell and gas that set the step (-info)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_dt, 0, 0, 0, 0));
   if (ice.dt_fixed > 0) {
@@ -29,11 +30,19 @@ PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
           // is not the cell's (sum theta kappa is the solid's there, ice.md 7.5)
           const PetscReal rho_micro = 1 / c[ice.Offset(m, icef::spvol)];
           const PetscReal sound     = theta < ice.cfl_min_fraction ? 0 : std::sqrt(ice.materials[m].eos->SoundSpeed2(rho_micro, c[ice.Offset(m, icef::temp)]));
-          for (PetscInt d = 0; d < ice.dim; ++d) local = PetscMin(local, ice.h[d] / (ice.sound_speed_knob * sound + std::fabs(c[ice.Offset(m, icef::vel + d)]) + 1e-300));
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscReal speed = std::fabs(c[ice.Offset(m, icef::vel + d)]), bound = ice.h[d] / (ice.sound_speed_knob * sound + speed + 1e-300);
+            if (bound < local) {
+              local       = bound;
+              limit[0]    = i, limit[1] = j, limit[2] = k, limit[3] = m;
+              limit_sound = sound, limit_speed = speed, limit_theta = theta, limit_T = c[ice.Offset(m, icef::temp)];
+            }
+          }
         }
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCallMPI(MPI_Allreduce(&local, dt, 1, MPIU_REAL, MPI_MIN, ice.comm));
+  if (local == *dt && limit[3] >= 0) PetscCall(PetscInfo(nullptr, "Gas step %" PetscInt_FMT ": dt set by %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): volume fraction %g, sound speed %g m/s (0: a pocket under -ice_cfl_min_fraction), speed %g m/s, temperature %g K\n", ice.step, ice.materials[limit[3]].name.c_str(), limit[0], limit[1], limit[2], (double)limit_theta, (double)limit_sound, (double)limit_speed, (double)limit_T));
   *dt *= ice.cfl;
   PetscCall(PetscLogEventEnd(ice.ev_dt, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -20,10 +20,23 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
   SwarmAccess fields(sim.swarm);
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::wave_speed, &c));
+  PetscInt limit = -1; // the particle that sets the step (-info)
   for (PetscInt p = 0; p < n; ++p)
-    for (PetscInt d = 0; d < dim; ++d) local = PetscMin(local, sim.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300));
-  PetscCall(fields.RestoreAll());
+    for (PetscInt d = 0; d < dim; ++d) {
+      const PetscReal bound = sim.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300);
+      if (bound < local) local = bound, limit = p;
+    }
   PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, sim.comm));
+  if (limit >= 0 && local == global) {
+    const PetscInt64 *pid;
+    const PetscInt   *material;
+    PetscCall(fields.Get(DMSwarmField_pid, &pid));
+    PetscCall(fields.Get(field::material, &material));
+    PetscReal speed = 0;
+    for (PetscInt d = 0; d < dim; ++d) speed = PetscMax(speed, std::fabs(v[dim * limit + d]));
+    PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": dt set by particle id %" PetscInt64_FMT " (%s): wave speed %g m/s, speed %g m/s\n", sim.step, pid[limit], sim.materials[material[limit]]->Name(), (double)c[limit], (double)speed));
+  }
+  PetscCall(fields.RestoreAll());
   sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
   PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
   const PetscReal remaining = sim.final_time - sim.time;
