@@ -11,7 +11,8 @@ figures with a verdict, and exits non-zero on failure. ctest calls them (tests/C
                 two-gamma solution, sum of volume fractions, gas a left of the contact, one pressure,
                 u_a = u_b (ice.md 6.2)
   exchange      uniform two-gas box (tests/decks/exchange_box.opts): temperature and velocity
-                differences against the implicit closed form per step, conservation (ice.md 6.3)
+                differences against the implicit closed form per step, conservation (ice.md 6.3); the
+                drag's heat: total energy conserved with it, thermal energy with -ice_drag_heating 0
   parallel      the Sod deck on 1 and 2 ranks: profile.csv agrees
   conservation  blast in a closed box (tests/decks/closed_box.opts): mass, momentum, energy budget
   acoustic      small isentropic Gaussian pulse (tests/decks/acoustic_pulse.opts), explicit and
@@ -431,6 +432,26 @@ def exchange(args, runner):
     check("max |du - closed form| / |du_0|", worst, args.tol, failures)
     check("max |change of sum rho u| / sum rho |u|", worst_momentum, args.tol_conservation, failures)
     check("max spread between cells (relative)", worst_spread, args.tol_conservation, failures)
+
+    # 3. the drag's heat: with -ice_conservative_energy the kinetic energy the drag removes becomes
+    # heat (total energy conserved); with -ice_drag_heating 0 it is dropped (thermal energy conserved,
+    # the total falls by exactly the kinetic energy lost)
+    def energies(state):
+        thermal = sum(state[m][0] * cv[m] * state[m][1] for m in (a, b))
+        kinetic = sum(0.5 * state[m][0] * state[m][2] ** 2 for m in (a, b))
+        return thermal, kinetic
+
+    thermal0 = sum(rho[m] * cv[m] * T0[m] for m in (a, b))
+    kinetic0 = sum(0.5 * rho[m] * v ** 2 for m, v in ((a, va), (b, vb)))
+    th_on, ke_on = energies(states[-1][2])
+    off = exchange_run(runner, args.deck, [*extra_m, "-ice_drag_heating", "0"], [steps[-1]], args.ranks)[0]
+    th_off, ke_off = energies(off[2])
+    lost = kinetic0 - ke_off
+    print(f"  drag heat after {steps[-1]} steps: kinetic energy lost {lost:.6g} J/m^3 of {kinetic0:.6g}; thermal energy change "
+          f"{th_on - thermal0:.6g} (drag heating on), {th_off - thermal0:.6g} (off)")
+    check("on: |change of total energy| / kinetic energy lost", abs(th_on + ke_on - thermal0 - kinetic0) / lost, args.tol_conservation, failures)
+    check("off: |change of thermal energy| / kinetic energy lost", abs(th_off - thermal0) / lost, args.tol_conservation, failures)
+    check("the drag removed kinetic energy (lost / initial > 1e-3, else the check is empty)", 0.0 if lost / kinetic0 > 1e-3 else 1.0, 0.5, failures)
     finish("exchange", failures)
 
 
