@@ -141,6 +141,7 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
       ++local;
     }
     PetscCall(fields.RestoreAll());
+    sim.stencil_cache.Invalidate(); // the particles are renumbered
     const PetscInt keep = (PetscInt)survivors.size();
     for (PetscInt k = 0; k < keep; ++k)
       if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
@@ -157,6 +158,7 @@ PetscErrorCode MigrateParticles(Simulation &sim)
   PetscInt64 global_outside = 0, removed_before = 0, count = 0, local;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
+  sim.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
   PetscCall(ComputeOwnerRanks(sim, &outside));
   if (sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0))) {
     PetscBool changed;
@@ -248,6 +250,7 @@ PetscErrorCode SortParticlesByCell(Simulation &sim)
     PetscCall(fields.RestoreAll());
   }
   if (!sorted) {
+    sim.stencil_cache.Invalidate();
     PetscCall(SwarmFieldNames(sim.swarm, &names));
     std::vector<std::string> all = {DMSwarmField_pid, DMSwarmField_rank};
     all.insert(all.end(), names->begin(), names->end());
