@@ -155,18 +155,23 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
   PetscCall(VecGetLocalSize(g.nodal, &nlocal));
   PetscCall(VecGetArray(g.nodal, &nodal));
   const PetscInt stride = g.NodeStride();
-  for (PetscInt node = 0; node < nlocal / dof; ++node)
-    for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
-      PetscScalar *nd = nodal + node * dof + vf * stride;
-      if (what.mass) {
-        nd[0] = 0;
-        for (PetscInt a = 0; a < dim && stride > 1 + 2 * dim; ++a) nd[1 + 2 * dim + a] = 0;
-      }
-      for (PetscInt a = 0; a < dim; ++a) {
-        if (what.momentum) nd[1 + a] = 0;
-        if (what.force) nd[1 + dim + a] = 0;
-      }
+  PetscInt       zero[3 * (1 + 3 * 3)], nzero = 0; // the requested dofs of one node, every field
+  PetscCheck(g.num_velocity_fields <= 3, sim.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
+  for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
+    const PetscInt base = vf * stride;
+    if (what.mass) {
+      zero[nzero++] = base;
+      for (PetscInt a = 0; a < dim && stride > 1 + 2 * dim; ++a) zero[nzero++] = base + 1 + 2 * dim + a;
     }
+    for (PetscInt a = 0; a < dim; ++a) {
+      if (what.momentum) zero[nzero++] = base + 1 + a;
+      if (what.force) zero[nzero++] = base + 1 + dim + a;
+    }
+  }
+  for (PetscInt node = 0; node < nlocal / dof; ++node) {
+    PetscScalar *nd = nodal + node * dof;
+    for (PetscInt z = 0; z < nzero; ++z) nd[zero[z]] = 0;
+  }
   PetscCall(VecRestoreArray(g.nodal, &nodal));
   PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
