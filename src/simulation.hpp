@@ -142,6 +142,7 @@ struct Simulation {
   PetscReal   stop_kinetic_fraction = 0; // stop once the kinetic energy falls below this fraction of its initial value (0: never)
   FUpdate     f_update = FUpdate::Linear;
   ShapeType   shape = ShapeType::Linear;
+  StencilCache stencil_cache;      // this step's particle stencils, shared by the transfers (shape.hpp)
   OutsidePolicy outside = OutsidePolicy::Error;
   PetscReal   gravity[3] = {0, 0, 0};
   PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void

@@ -44,14 +44,30 @@ struct G2PKernel {
   {
     PetscFunctionBeginUser;
     switch (tr) {
-    case Transfer::FlipPic: PetscCall((Loop<DIM, S, AXI, Transfer::FlipPic>())); break;
-    case Transfer::APIC: PetscCall((Loop<DIM, S, AXI, Transfer::APIC>())); break;
-    case Transfer::XPIC: PetscCall((Loop<DIM, S, AXI, Transfer::XPIC>())); break;
+    case Transfer::FlipPic: PetscCall((BySums<DIM, S, AXI, Transfer::FlipPic>())); break;
+    case Transfer::APIC: PetscCall((BySums<DIM, S, AXI, Transfer::APIC>())); break;
+    case Transfer::XPIC: PetscCall((BySums<DIM, S, AXI, Transfer::XPIC>())); break;
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
+  // Only the nodal sums this call uses: the velocity increment (FLIP, XPIC) and the velocity
+  // gradient (kinematics; APIC with linear weights) are template switches, so MUSL's velocity-only
+  // pass skips the gradient and its position-and-F pass the increment.
   template <int DIM, ShapeType S, bool AXI, Transfer TR>
+  PetscErrorCode BySums()
+  {
+    PetscFunctionBeginUser;
+    const bool dv   = what.velocity && TR != Transfer::APIC;
+    const bool grad = what.kinematics || (TR == Transfer::APIC && S == ShapeType::Linear);
+    if (dv && grad) PetscCall((Loop<DIM, S, AXI, TR, true, true>()));
+    else if (dv) PetscCall((Loop<DIM, S, AXI, TR, true, false>()));
+    else if (grad) PetscCall((Loop<DIM, S, AXI, TR, false, true>()));
+    else PetscCall((Loop<DIM, S, AXI, TR, false, false>()));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  template <int DIM, ShapeType S, bool AXI, Transfer TR, bool DV, bool GRAD>
   PetscErrorCode Loop()
   {
     constexpr bool APIC = TR == Transfer::APIC, XPIC = TR == Transfer::XPIC;
@@ -79,18 +95,21 @@ struct G2PKernel {
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
     if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
-    Stencil<DIM, S> st;
+    bool             fill;
+    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
-      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      const Stencil<DIM, S> &st = stencils[p];
+      if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
       const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
         for (int a = 0; a < DIM; ++a) {
-          dv[a] += N * (nv[DIM + a] - nv[a]);
+          if constexpr (DV) dv[a] += N * (nv[DIM + a] - nv[a]);
           vnew[a] += N * nv[DIM + a];
-          for (int b = 0; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
+          if constexpr (GRAD)
+            for (int b = 0; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
         }
         if constexpr (XPIC) {
           const PetscScalar *sv = star + index(i, j, k) * vdof + vf * 2 * DIM;
@@ -152,6 +171,8 @@ struct G2PKernel {
       }
     }
     sim.diag.external_work += work;
+    // the particles moved, or their cpGIMP widths changed with F: the stencils are stale
+    if (what.position || (what.kinematics && S == ShapeType::CpGimp)) sim.stencil_cache.Invalidate();
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -180,9 +201,11 @@ struct XPICKernel {
     PetscCall(fields.Get(field::mass, &m));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
     if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
-    Stencil<DIM, S> st;
+    bool             fill;
+    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
-      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      const Stencil<DIM, S> &st = stencils[p];
+      if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0;
       PetscReal      u[DIM] = {};
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal *) {

@@ -144,6 +144,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
   if (sim.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  sim.stencil_cache.Invalidate(); // new ghost ranges
   PetscCheck(!sim.ice && !sim.heat, sim.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with gases (-ice_materials) or -mpm_heat_conduction: their grids follow the node DMDA's ranges from set-up");
   PetscCall(PetscLogEventBegin(sim.ev_balance, 0, 0, 0, 0));
   const PetscInt        dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};

@@ -115,6 +115,15 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
+        PetscScalar *vout = vel + l * vdof;
+        { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
+          bool empty = true;
+          for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
+          if (empty) {
+            for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
+            continue;
+          }
+        }
         const PetscInt node[3] = {i, j, k};
         PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
         for (PetscInt vf = 0; vf < nvf; ++vf) {

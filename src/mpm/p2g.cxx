@@ -25,19 +25,40 @@ struct P2GKernel {
     const bool apic = sim.transfer == Transfer::APIC && what.momentum;
     if constexpr (DIM == 2) {
       if (sim.axisymmetric) {
-        if (apic) PetscCall((Loop<DIM, S, true, true>()));
-        else PetscCall((Loop<DIM, S, true, false>()));
+        if (apic) PetscCall((ByRequest<DIM, S, true, true>()));
+        else PetscCall((ByRequest<DIM, S, true, false>()));
         PetscFunctionReturn(PETSC_SUCCESS);
       }
     }
-    if (apic) PetscCall((Loop<DIM, S, false, true>()));
-    else PetscCall((Loop<DIM, S, false, false>()));
+    if (apic) PetscCall((ByRequest<DIM, S, false, true>()));
+    else PetscCall((ByRequest<DIM, S, false, false>()));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
+  // The requested sums (mass, momentum, force) as template switches: the node loop carries only
+  // the sums of this call.
   template <int DIM, ShapeType S, bool AXI, bool APIC>
+  PetscErrorCode ByRequest()
+  {
+    PetscFunctionBeginUser;
+    const int request = (what.mass ? 1 : 0) | (what.momentum ? 2 : 0) | (what.force ? 4 : 0);
+    switch (request) {
+    case 1: PetscCall((Loop<DIM, S, AXI, APIC, true, false, false>())); break;
+    case 2: PetscCall((Loop<DIM, S, AXI, APIC, false, true, false>())); break;
+    case 3: PetscCall((Loop<DIM, S, AXI, APIC, true, true, false>())); break;
+    case 4: PetscCall((Loop<DIM, S, AXI, APIC, false, false, true>())); break;
+    case 5: PetscCall((Loop<DIM, S, AXI, APIC, true, false, true>())); break;
+    case 6: PetscCall((Loop<DIM, S, AXI, APIC, false, true, true>())); break;
+    case 7: PetscCall((Loop<DIM, S, AXI, APIC, true, true, true>())); break;
+    default: break;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  template <int DIM, ShapeType S, bool AXI, bool APIC_, bool MASS, bool MOM, bool FORCE>
   PetscErrorCode Loop()
   {
+    constexpr bool APIC = APIC_ && MOM;
     const Grid          &g = sim.grid;
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
@@ -61,26 +82,36 @@ struct P2GKernel {
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (nvf > 1) PetscCall(fields.Get(field::material, &material));
     if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
-    Stencil<DIM, S> st;
-    const bool      do_mass = what.mass, do_mom = what.momentum, do_force = what.force;
+    bool             fill;
+    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    constexpr bool   do_mass = MASS, do_mom = MOM, do_force = FORCE;
     for (PetscInt p = 0; p < n; ++p) {
-      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      Stencil<DIM, S> &st = stencils[p];
+      if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
       const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
-      const PetscReal *vp = v + DIM * p, *s = sigma + 9 * p, *fe = fext + DIM * p, *xp = x + DIM * p;
-      PetscReal        hoop = 0; // axisymmetric: V_p sigma_tt / r_p
-      if constexpr (AXI) hoop = Vp * s[8] / xp[0];
+      const PetscReal *xp = x + DIM * p;
+      // The particle's values in locals: the node array's stores cannot alias them, so the scatter
+      // below reads them from registers (same operations, same order).
+      PetscReal vp[DIM], s[DIM][DIM], fe[DIM];
+      for (int a = 0; a < DIM; ++a) {
+        vp[a] = v[DIM * p + a];
+        fe[a] = fext[DIM * p + a];
+        for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
+      }
+      PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
+      if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
       (void)hoop;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
-        if (do_mass) {
+        if constexpr (do_mass) {
           node[0] += N * mp;
           if (nvf > 1)
             for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
         }
         if constexpr (APIC) {
-          const PetscInt  I[3]  = {i, j, k};
-          PetscReal       dx[3] = {0, 0, 0};
+          PetscReal dx[3] = {0, 0, 0};
+          const PetscInt I[3] = {i, j, k};
           for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
           const PetscReal *C = affine + 9 * p;
           for (int a = 0; a < DIM; ++a) {
@@ -88,17 +119,16 @@ struct P2GKernel {
             for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
             node[1 + a] += N * mp * va;
           }
-        } else if (do_mom)
+        } else if constexpr (do_mom)
           for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
-        if (do_force)
+        if constexpr (do_force)
           for (int a = 0; a < DIM; ++a) {
             PetscReal div = 0;
-            for (int b = 0; b < DIM; ++b) div += s[3 * a + b] * dN[b];
+            for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
             div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
             node[1 + DIM + a] += -Vp * div + N * fe[a];
           }
-        if constexpr (AXI)
-          if (do_force) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
+        if constexpr (AXI && do_force) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
       });
     }
     PetscCall(fields.RestoreAll());
@@ -125,18 +155,23 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
   PetscCall(VecGetLocalSize(g.nodal, &nlocal));
   PetscCall(VecGetArray(g.nodal, &nodal));
   const PetscInt stride = g.NodeStride();
-  for (PetscInt node = 0; node < nlocal / dof; ++node)
-    for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
-      PetscScalar *nd = nodal + node * dof + vf * stride;
-      if (what.mass) {
-        nd[0] = 0;
-        for (PetscInt a = 0; a < dim && stride > 1 + 2 * dim; ++a) nd[1 + 2 * dim + a] = 0;
-      }
-      for (PetscInt a = 0; a < dim; ++a) {
-        if (what.momentum) nd[1 + a] = 0;
-        if (what.force) nd[1 + dim + a] = 0;
-      }
+  PetscInt       zero[3 * (1 + 3 * 3)], nzero = 0; // the requested dofs of one node, every field
+  PetscCheck(g.num_velocity_fields <= 3, sim.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
+  for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
+    const PetscInt base = vf * stride;
+    if (what.mass) {
+      zero[nzero++] = base;
+      for (PetscInt a = 0; a < dim && stride > 1 + 2 * dim; ++a) zero[nzero++] = base + 1 + 2 * dim + a;
     }
+    for (PetscInt a = 0; a < dim; ++a) {
+      if (what.momentum) zero[nzero++] = base + 1 + a;
+      if (what.force) zero[nzero++] = base + 1 + dim + a;
+    }
+  }
+  for (PetscInt node = 0; node < nlocal / dof; ++node) {
+    PetscScalar *nd = nodal + node * dof;
+    for (PetscInt z = 0; z < nzero; ++z) nd[zero[z]] = 0;
+  }
   PetscCall(VecRestoreArray(g.nodal, &nodal));
   PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));

@@ -21,6 +21,8 @@
 #include "../petsc_compat.hpp"
 #include <cmath>
 #include <petscsys.h>
+#include <type_traits>
+#include <vector>
 
 namespace burst {
 
@@ -148,6 +150,44 @@ struct Stencil {
   }
 };
 
+// The particles' stencils of the current step, evaluated once by the first transfer that needs
+// them and reused by the later ones (MUSL: P2G, G2P, P2G, G2P on the same positions and F; USL: P2G,
+// G2P), and by the XPIC passes. Kept per rank beside the swarm, not in it: a scratch array that grows
+// with the local particle count and is never shrunk. Valid only within one step (`step` is
+// Simulation::step) for the same local count, dimension and interpolator, and until something moves
+// the particles, changes F (cpGIMP widths) or reorders them: G2P's position and F updates, removal,
+// migration and sorting call Invalidate().
+struct StencilCache {
+  std::vector<PetscReal> storage; // raw storage, 8-byte aligned
+  PetscInt               n = 0, step = -1, dim = 0;
+  ShapeType              shape = ShapeType::Linear;
+  bool                   valid = false;
+
+  void Invalidate() { valid = false; }
+
+  // The stencils of `n` particles at step `step`; *fill is true when the caller must evaluate them
+  // (every one of them, in its particle loop) and false when they hold this step's values.
+  template <int DIM, ShapeType S>
+  Stencil<DIM, S> *Prepare(PetscInt n_, PetscInt step_, bool *fill)
+  {
+    using T = Stencil<DIM, S>;
+    static_assert(std::is_trivially_copyable<T>::value && alignof(T) <= alignof(PetscReal), "stencils live in a PetscReal buffer");
+    if (valid && n == n_ && step == step_ && dim == DIM && shape == S) {
+      *fill = false;
+      return reinterpret_cast<T *>(storage.data());
+    }
+    const size_t need = (sizeof(T) * (size_t)n_ + sizeof(PetscReal) - 1) / sizeof(PetscReal);
+    if (storage.size() < need) storage.resize(need + need / 8); // some room for arrivals of later steps
+    n     = n_;
+    step  = step_;
+    dim   = DIM;
+    shape = S;
+    valid = true;
+    *fill = true;
+    return reinterpret_cast<T *>(storage.data());
+  }
+};
+
 // Visit every node of the tensor-product support: f(i, j, k, N, dN[DIM]).
 template <int DIM, ShapeType S, class Fn>
 inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
@@ -161,11 +201,19 @@ inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
         f(st.idx[0][a], st.idx[1][b], (PetscInt)0, N, dN);
       }
   } else {
+    // the x-y products of the weights, shared by the NS planes in z (same products, same bits)
+    PetscReal ww[NS][NS], dww[NS][NS], wdw[NS][NS];
+    for (int b = 0; b < NS; ++b)
+      for (int a = 0; a < NS; ++a) {
+        ww[b][a]  = st.w[0][a] * st.w[1][b];
+        dww[b][a] = st.dw[0][a] * st.w[1][b];
+        wdw[b][a] = st.w[0][a] * st.dw[1][b];
+      }
     for (int c = 0; c < NS; ++c)
       for (int b = 0; b < NS; ++b)
         for (int a = 0; a < NS; ++a) {
-          const PetscReal N     = st.w[0][a] * st.w[1][b] * st.w[2][c];
-          const PetscReal dN[3] = {st.dw[0][a] * st.w[1][b] * st.w[2][c], st.w[0][a] * st.dw[1][b] * st.w[2][c], st.w[0][a] * st.w[1][b] * st.dw[2][c]};
+          const PetscReal N     = ww[b][a] * st.w[2][c];
+          const PetscReal dN[3] = {dww[b][a] * st.w[2][c], wdw[b][a] * st.w[2][c], ww[b][a] * st.dw[2][c]};
           f(st.idx[0][a], st.idx[1][b], st.idx[2][c], N, dN);
         }
   }

@@ -85,17 +85,22 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(DMSwarmField_rank, &rank));
   PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
+  // the grid's numbers in locals: the stores into rank[] and cell[] (PetscInt) could otherwise
+  // alias the grid's PetscInt members and force a reload of each per particle
+  const PetscInt  dim = g.dim, cells[3] = {g.cells[0], g.cells[1], g.cells[2]}, procs[2] = {g.procs[0], g.procs[1]};
+  const PetscReal lower[3] = {g.lower[0], g.lower[1], g.lower[2]}, upper[3] = {g.upper[0], g.upper[1], g.upper[2]}, h[3] = {g.h[0], g.h[1], g.h[2]};
+  const bool      one_slot[3] = {g.start[0].size() <= 2, g.start[1].size() <= 2, dim < 3 || g.start[2].size() <= 2};
   for (PetscInt p = 0; p < n; ++p) {
     PetscInt slot[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     bool     inside  = true;
-    for (PetscInt d = 0; d < g.dim; ++d) {
-      const PetscReal xd = x[p * g.dim + d];
-      if (!(xd >= g.lower[d] && xd <= g.upper[d])) { // also catches NaN
+    for (PetscInt d = 0; d < dim; ++d) {
+      const PetscReal xd = x[p * dim + d];
+      if (!(xd >= lower[d] && xd <= upper[d])) { // also catches NaN
         inside = false;
         break;
       }
-      c[d]    = PetscMin((PetscInt)std::floor((xd - g.lower[d]) / g.h[d]), g.cells[d] - 1);
-      slot[d] = FindSlot(g.start[d], c[d]);
+      c[d]    = PetscMin((PetscInt)std::floor((xd - lower[d]) / h[d]), cells[d] - 1);
+      slot[d] = one_slot[d] ? 0 : FindSlot(g.start[d], c[d]);
     }
     if (!inside) {
       rank[p] = -1;
@@ -103,8 +108,8 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
       ++outside;
       continue;
     }
-    rank[p] = slot[0] + g.procs[0] * (slot[1] + g.procs[1] * slot[2]);
-    cell[p] = c[0] + g.cells[0] * (c[1] + g.cells[1] * c[2]);
+    rank[p] = slot[0] + procs[0] * (slot[1] + procs[1] * slot[2]);
+    cell[p] = c[0] + cells[0] * (c[1] + cells[1] * c[2]);
   }
   PetscCall(fields.RestoreAll());
   *num_outside = outside;
@@ -141,6 +146,7 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
       ++local;
     }
     PetscCall(fields.RestoreAll());
+    sim.stencil_cache.Invalidate(); // the particles are renumbered
     const PetscInt keep = (PetscInt)survivors.size();
     for (PetscInt k = 0; k < keep; ++k)
       if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
@@ -157,6 +163,7 @@ PetscErrorCode MigrateParticles(Simulation &sim)
   PetscInt64 global_outside = 0, removed_before = 0, count = 0, local;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
+  sim.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
   PetscCall(ComputeOwnerRanks(sim, &outside));
   if (sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0))) {
     PetscBool changed;
@@ -248,6 +255,7 @@ PetscErrorCode SortParticlesByCell(Simulation &sim)
     PetscCall(fields.RestoreAll());
   }
   if (!sorted) {
+    sim.stencil_cache.Invalidate();
     PetscCall(SwarmFieldNames(sim.swarm, &names));
     std::vector<std::string> all = {DMSwarmField_pid, DMSwarmField_rank};
     all.insert(all.end(), names->begin(), names->end());
