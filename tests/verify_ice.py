@@ -828,12 +828,19 @@ class Synthetic:
             # per-material betas as in ice.md 1.8, then the 2 x 2 implicit solve
             bT = {a: dt * th[b] * H * v[a] / cv[a], b: dt * th[a] * H * v[b] / cv[b]}
             bU = {a: dt * th[b] * K * v[a], b: dt * th[a] * K * v[b]}
-            for q, beta in ((T, bT), (u, bU)):
+            # burst's order: momentum, the drag's heat (one temperature rise; off with
+            # -ice_drag_heating 0), then heat
+            kinetic = sum(0.5 * rho[m] * u[m] ** 2 for m in (a, b))
+            for q, beta in ((u, bU), (T, bT)):
                 if self.fault == "explicit_exchange":
                     q[a], q[b] = q[a] + beta[a] * (q[b] - q[a]), q[b] + beta[b] * (q[a] - q[b])
                 else:
                     E = np.array([[1 + beta[a], -beta[a]], [-beta[b], 1 + beta[b]]])
                     q[a], q[b] = np.linalg.solve(E, [q[a], q[b]])
+                if q is u and o.get("-ice_drag_heating", "1").lower() not in ("0", "false", "no"):
+                    rise = (kinetic - sum(0.5 * rho[m] * u[m] ** 2 for m in (a, b))) / sum(rho[m] * cv[m] for m in (a, b))
+                    for m in (a, b):
+                        T[m] += max(rise, 0.0)
         dx = (floats(o["-grid_upper"])[0] - floats(o["-grid_lower"])[0]) / n
         x = (np.arange(n) + 0.5) * dx
         w = {m: rho[m] * R[m] * T[m] for m in (a, b)}
