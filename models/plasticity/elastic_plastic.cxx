@@ -18,12 +18,18 @@
 // below runs as before):
 //   nonlocal:   the failure drivers are averaged over the material length ell
 //               (-MAT_regularization_length), Tvergaard & Needleman (1995): the local increments of
-//               the step, Delta eps_p and Delta f (growth + nucleation, eqs. 16-17), go to the
-//               nonlocal average of src/mpm/nonlocal.cxx (weights a(r) = (1 - r^2/ell^2)^2 per
-//               direction, mass-weighted), and the averages are added at the start of the next step:
+//               the step, the damage Delta D = Delta eps_p / eps_f (eqs. 20-21) and the porosity
+//               Delta f (growth + nucleation, eqs. 16-17), go to the nonlocal average of
+//               src/mpm/nonlocal.cxx (weights a(r) = (1 - r^2/ell^2)^2 per direction,
+//               mass-weighted), and the averages are added at the start of the next step:
 //               f <- f + <Delta f> (GTN sees the nonlocal porosity, so the void softening has a
-//               length), eps_bar <- eps_bar + <Delta eps_p>, and TEPLA-F (eq. 22) compares eps_bar,
-//               not eps_p, with eps_f. The one-step lag is O(dt) (1e-8 s steps).
+//               length), D_bar <- D_bar + <Delta D> (from the initial damage), and TEPLA-F (eq. 22)
+//               reads (f/f_c)^2 + D_bar^2: the strain term as the accumulated damage, which is
+//               eps_p/eps_f on a proportional path and what the code the paper ran used
+//               (ElasticPlastic.cc, models.md 2). The one-step lag is O(dt) (1e-8 s steps).
+// -MAT_failure_tepla_damage (off by default): the same damage form of TEPLA-F without the average,
+// (f/f_c)^2 + D^2 with the local D, instead of eps_p / eps_f at the current triaxiality (which an
+// elastic step with a tensile mean stress and a small deviator, eps_f -> its floor, fails at once).
 //   crack_band: a criterion starts softening instead of failing the particle (Bazant & Oh 1983;
 //               Hillerborg's linear law in Abaqus's plastic-displacement form): the stress is
 //               (1 - omega) times the stress of the intact update, omega = u_p / u_f, with the
@@ -64,7 +70,7 @@ constexpr const char *kPlasticWork       = "plastic_work";       // accumulated 
 constexpr const char *kPlasticHeat       = "plastic_heat";       // the part of it turned into heat (eq. 18), J
 constexpr const char *kElasticEnergy     = "elastic_energy";     // stored elastic energy (p^2/(2K) + q^2/(6 mu)) V now, J
 // Regularisation state (registered only when a material uses -MAT_regularization)
-constexpr const char *kNonlocalStrain    = "nonlocal_strain";        // eps_bar: sum of the nonlocal averages of Delta eps_p, -
+constexpr const char *kNonlocalStrain    = "nonlocal_damage";        // D_bar: initial damage + sum of the nonlocal averages of Delta D, -
 constexpr const char *kSofteningDisp     = "softening_displacement"; // u_p = h_p sum Delta eps_p since the criterion was met, m
 constexpr const char *kSofteningLimit    = "softening_limit";        // u_f = 2 G_f / sigma_i, m (0: not softening)
 constexpr const char *kSoftening         = "softening";              // omega = u_p / u_f in [0, 1] (output)
@@ -209,6 +215,7 @@ public:
   Regularization regularization        = Regularization::None;
   PetscReal      regularization_length = 0; // ell, m (nonlocal)
   PetscReal      fracture_energy       = 0; // G_f, J/m^2 (crack_band)
+  PetscBool      tepla_damage          = PETSC_FALSE; // TEPLA-F with the accumulated damage D
 
   PetscReal NonlocalLength() const override { return regularization == Regularization::Nonlocal ? regularization_length : 0; }
 
@@ -274,9 +281,10 @@ public:
       failure_response = (FailureResponse)response;
     }
     PetscCall(PetscOptionsReal("-failure_porosity", "Critical porosity of TEPLA-F (eq. 22) and of the porosity criterion (-)", "", tepla_critical_porosity, &tepla_critical_porosity, nullptr));
+    PetscCall(PetscOptionsBool("-failure_tepla_damage", "TEPLA-F (eq. 22) as (f/f_c)^2 + D^2 with the accumulated damage D of the damage model (as ElasticPlastic.cc, which the paper ran), instead of eps_p/eps_f at the current triaxiality", "", tepla_damage, &tepla_damage, nullptr));
     {
       int reg = (int)regularization;
-      PetscCall(OptionsChoice(PetscOptionsObject, "-regularization", "Length scale of failure (issue 12): none, nonlocal (failure drivers Delta eps_p, Delta f averaged over -regularization_length), crack_band (linear softening after a criterion, energy -fracture_energy per unit crack area)", kRegularizationNames, 3, &reg, nullptr));
+      PetscCall(OptionsChoice(PetscOptionsObject, "-regularization", "Length scale of failure (issue 12): none, nonlocal (failure drivers Delta D, Delta f averaged over -regularization_length), crack_band (linear softening after a criterion, energy -fracture_energy per unit crack area)", kRegularizationNames, 3, &reg, nullptr));
       regularization = (Regularization)reg;
       PetscBool set_length, set_energy;
       PetscCall(PetscOptionsReal("-regularization_length", "Material length ell of the nonlocal average: radius of the weight (1 - r^2/ell^2)^2 per direction (m), > 0", "", regularization_length, &regularization_length, &set_length));
@@ -403,7 +411,8 @@ public:
       if (reg.source) {
         for (int a = 0; a <= kNonlocalComponents; ++a) reg.source[(1 + kNonlocalComponents) * p + a] = 0;
         for (int a = 0; a < kNonlocalComponents; ++a) reg.average[kNonlocalComponents * p + a] = 0;
-        reg.strain[p] = reg.disp[p] = reg.limit[p] = reg.omega[p] = 0;
+        reg.disp[p] = reg.limit[p] = reg.omega[p] = 0;
+        reg.strain[p]                              = D[p];
         reg.bits[p]                                        = 0;
       }
     }
@@ -559,8 +568,10 @@ public:
         const PetscInt q = c.index[k];
         int            bits = 0;
         if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
-        const PetscReal strain  = nonlocal ? reg.strain[q] : c.plastic_strain[k]; // nonlocal: eps_bar in eq. 22
-        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity, ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? strain / c.fracture_strain[k] : 0;
+        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
+        PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+        if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
+        else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
         if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
         if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
         if (c.unstable[k]) bits |= FailStability;
@@ -627,7 +638,7 @@ public:
         if (reg.source && regularization == Regularization::Nonlocal) { // the drivers for the average
           PetscReal *src = reg.source + (1 + kNonlocalComponents) * q;
           src[0]         = failed[q] && failure_response != FailureResponse::None ? 0 : mp.mass[q];
-          src[1]         = c.delta_plastic_strain[k];
+          src[1]         = c.damage[k] - D[q]; // Delta D of this step (D[q] is still D_n)
           src[2]         = porosity_increment[k];
         }
         mp.temperature[q] = c.temperature[k];
@@ -676,8 +687,9 @@ public:
     PetscCall(flow->View(viewer));
     PetscCall(damage->View(viewer));
     for (auto &s : stability) PetscCall(s->View(viewer));
-    if (regularization == Regularization::Nonlocal) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: nonlocal, length %g m (Delta eps_p and Delta f averaged; TEPLA-F with the nonlocal strain)\n", (double)regularization_length));
+    if (regularization == Regularization::Nonlocal) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: nonlocal, length %g m (Delta D and Delta f averaged; TEPLA-F with the nonlocal damage)\n", (double)regularization_length));
     if (regularization == Regularization::CrackBand) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: crack_band, fracture energy %g J/m^2 (linear softening over u_f = 2 G_f / sigma_i after a criterion)\n", (double)fracture_energy));
+    if (tepla_damage) PetscCall(PetscViewerASCIIPrintf(viewer, "  TEPLA-F with the accumulated damage D\n"));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off", (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
