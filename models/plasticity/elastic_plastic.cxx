@@ -159,8 +159,11 @@ inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stre
 struct RegularizationFields {
   PetscReal       *source = nullptr, *average = nullptr, *strain = nullptr, *disp = nullptr, *limit = nullptr, *omega = nullptr;
   PetscInt        *bits = nullptr;
-  const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m)
+  const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the swarm has them
+  const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver's swarm), m^3
   PetscInt         dim         = 0;
+  // The particle size h_p of the crack band, m.
+  PetscReal Size(PetscInt q) const { return half_width0 ? 2 * half_width0[dim * q] : std::pow(volume0[q], 1.0 / dim); }
 
   PetscErrorCode Get(DM swarm, SwarmAccess &fields)
   {
@@ -175,7 +178,12 @@ struct RegularizationFields {
     PetscCall(fields.Get(kSofteningLimit, &limit));
     PetscCall(fields.Get(kSoftening, &omega));
     PetscCall(fields.Get(kSofteningBits, &bits));
-    PetscCall(fields.Get("half_width0", &half_width0));
+    std::vector<std::string> *names;
+    PetscCall(SwarmFieldNames(swarm, &names));
+    bool has_half_width = false;
+    for (const std::string &n : *names) has_half_width = has_half_width || n == "half_width0";
+    if (has_half_width) PetscCall(fields.Get("half_width0", &half_width0));
+    else PetscCall(fields.Get("volume0", &volume0));
     PetscCall(DMGetDimension(swarm, &dim));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -585,7 +593,7 @@ public:
             reg.bits[q]             = bits;
           }
           if (reg.limit[q] > 0) {
-            reg.disp[q] += 2 * reg.half_width0[reg.dim * q] * c.delta_plastic_strain[k]; // h_p Delta eps_p
+            reg.disp[q] += reg.Size(q) * c.delta_plastic_strain[k]; // h_p Delta eps_p
             omega = PetscMin(reg.disp[q] / reg.limit[q], 1.0);
           }
           bits = omega >= 1 ? (int)reg.bits[q] : 0; // fails once the softening is complete
