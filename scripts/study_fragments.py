@@ -91,6 +91,7 @@ def plot(rows, args, png):
     ax.axhspan(6, 7, color="C3", alpha=0.1, label="paper: 6-7")
     ax.set_xlabel("cell size (mm)")
     ax.set_ylabel("fragments on the quarter")
+    ax.set_ylim(top=max(int(r["fragments"]) for r in rows) + 5)
     ax.set_title(os.path.basename(args.scene).replace(".opts", "") + ": count (squares: 3x3, 4x4 per cell)", fontsize=9)
     ax.legend(fontsize=7)
     ax = axes[1]
