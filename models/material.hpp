@@ -67,6 +67,10 @@ public:
   virtual bool IsRigid(PetscReal velocity[3]) const { (void)velocity; return false; }
   // Model fields written with the particles (HDF5/XDMF).
   virtual std::vector<OutputField> OutputFields() const { return {}; }
+  // Nonlocal regularisation (src/mpm/nonlocal.cxx): a model that wants the per-particle values it
+  // writes to kNonlocalSource averaged over a radius returns that radius (m) here, 0 otherwise; the
+  // averages arrive in kNonlocalAverage after the step's stress update (and nonlocal_active_ is set).
+  virtual PetscReal NonlocalLength() const { return 0; }
 
   const char *Name() const { return name_.c_str(); }
   const char *Model() const { return model_.c_str(); }
@@ -79,7 +83,16 @@ public:
   PetscReal   bulk_modulus_ = -1; // reference bulk modulus, Pa (the solid's volume as the gas sees it, ice.md 2.2)
   PetscInt    id_      = -1; // material id (index in -materials) of its particles
   PetscInt    registered_bytes_ = 0; // bytes per particle of the fields RegisterFields added
+  bool        nonlocal_active_ = false; // the nonlocal average runs after the stress update (set by src/mpm/nonlocal.cxx)
 };
+
+// The fields of the nonlocal average (src/mpm/nonlocal.cxx), registered by a model that returns a
+// NonlocalLength > 0: kNonlocalSource holds per particle a weight (kg; 0: the particle neither
+// contributes nor receives) and kNonlocalComponents values; kNonlocalAverage receives the weighted
+// averages of the values over the neighbourhood, sum_q w_q a(x_p, x_q) s_q / sum_q w_q a(x_p, x_q).
+constexpr int                kNonlocalComponents = 2;
+inline constexpr const char *kNonlocalSource     = "nonlocal_source";  // bs 1 + kNonlocalComponents
+inline constexpr const char *kNonlocalAverage    = "nonlocal_average"; // bs kNonlocalComponents
 
 // Work of the stress over one step, 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt, with the mid-step
 // volume V_mid = V_{n+1} (1 - tr(D) dt / 2). Arrays are row-major 3x3.

@@ -258,6 +258,7 @@ PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &out);
 PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop);
 PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
 PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
+PetscErrorCode NonlocalAverage(Simulation &sim);     // src/mpm/nonlocal.cxx: no-op unless a material has -MAT_regularization nonlocal
 
 // Fragments (src/fragments.cxx)
 PetscErrorCode FragmentsSetUp(Simulation &sim);

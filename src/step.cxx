@@ -59,6 +59,7 @@ static PetscErrorCode MPMStep(Simulation &sim)
   }
   PetscCall(MigrateParticles(sim));
   PetscCall(ConductHeat(sim)); // after migration: the stencil needs every particle on its owner rank
+  PetscCall(NonlocalAverage(sim)); // likewise; no-op unless a material regularises nonlocally
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -108,6 +109,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(UpdateStress(sim));
   PetscCall(MigrateParticles(sim));
   PetscCall(ConductHeat(sim));
+  PetscCall(NonlocalAverage(sim));
   PetscCall(IceAdvect(ice));
   ice.time += sim.dt;
   ice.step += 1;

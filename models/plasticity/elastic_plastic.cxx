@@ -14,6 +14,31 @@
 //      no_shear (keep the pressure). The elastic energy a response releases is accumulated in the
 //      failure_energy field (J) so the energy balance can report it.
 //   7. sigma_{n+1} = R_{n+1} (s - p I) R_{n+1}^T; stress work; wave speed sqrt((K + 4 mu/3)/rho).
+// Regularisation of failure (-MAT_regularization; issue 12, off by default, and then every line
+// below runs as before):
+//   nonlocal:   the failure drivers are averaged over the material length ell
+//               (-MAT_regularization_length), Tvergaard & Needleman (1995): the local increments of
+//               the step, the damage Delta D = Delta eps_p / eps_f (eqs. 20-21) and the porosity
+//               Delta f (growth + nucleation, eqs. 16-17), go to the nonlocal average of
+//               src/mpm/nonlocal.cxx (weights a(r) = (1 - r^2/ell^2)^2 per direction,
+//               mass-weighted), and the averages are added at the start of the next step:
+//               f <- f + <Delta f> (GTN sees the nonlocal porosity, so the void softening has a
+//               length), D_bar <- D_bar + <Delta D> (from the initial damage), and TEPLA-F (eq. 22)
+//               reads (f/f_c)^2 + D_bar^2: the strain term as the accumulated damage, which is
+//               eps_p/eps_f on a proportional path and what the code the paper ran used
+//               (ElasticPlastic.cc, models.md 2). The one-step lag is O(dt) (1e-8 s steps).
+// -MAT_failure_tepla_damage (off by default): the same damage form of TEPLA-F without the average,
+// (f/f_c)^2 + D^2 with the local D, instead of eps_p / eps_f at the current triaxiality (which an
+// elastic step with a tensile mean stress and a small deviator, eps_f -> its floor, fails at once).
+//   crack_band: a criterion starts softening instead of failing the particle (Bazant & Oh 1983;
+//               Hillerborg's linear law in Abaqus's plastic-displacement form): the stress is
+//               (1 - omega) times the stress of the intact update, omega = u_p / u_f, with the
+//               plastic displacement u_p = h_p sum Delta eps_p since the criterion was met, h_p the
+//               particle size, and u_f = 2 G_f / sigma_i (sigma_i = (1 - f) sigma_f then), so the
+//               energy per unit crack area of a one-particle band is G_f (-MAT_fracture_energy)
+//               whatever h_p; at omega = 1 the particle fails with the criterion's bits and the
+//               failure response applies as before. The work done while softening (less the
+//               change of stored elastic energy) is counted as failure energy.
 // Particles are processed in chunks of kChunk; each sub-model is called once per chunk.
 #include "families.hpp"
 #include "polar.hpp"
@@ -44,6 +69,12 @@ constexpr const char *kFailureEnergy     = "failure_energy";     // elastic ener
 constexpr const char *kPlasticWork       = "plastic_work";       // accumulated plastic work sigma : d eps_p V, J
 constexpr const char *kPlasticHeat       = "plastic_heat";       // the part of it turned into heat (eq. 18), J
 constexpr const char *kElasticEnergy     = "elastic_energy";     // stored elastic energy (p^2/(2K) + q^2/(6 mu)) V now, J
+// Regularisation state (registered only when a material uses -MAT_regularization)
+constexpr const char *kNonlocalStrain    = "nonlocal_damage";        // D_bar: initial damage + sum of the nonlocal averages of Delta D, -
+constexpr const char *kSofteningDisp     = "softening_displacement"; // u_p = h_p sum Delta eps_p since the criterion was met, m
+constexpr const char *kSofteningLimit    = "softening_limit";        // u_f = 2 G_f / sigma_i, m (0: not softening)
+constexpr const char *kSoftening         = "softening";              // omega = u_p / u_f in [0, 1] (output)
+constexpr const char *kSofteningBits     = "softening_criteria";     // int: the criterion bits that started the softening
 
 // Views of the model's per-particle state, gotten together (the members in declaration order, so a
 // structured binding names them).
@@ -90,6 +121,22 @@ PetscErrorCode FieldsRegistered(DM swarm, PetscBool *registered)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The same mark for the regularisation fields (registered once, only if a material regularises).
+PetscErrorCode RegularizationFieldsRegistered(DM swarm, PetscBool mark_now, PetscBool *registered)
+{
+  PetscObject mark = nullptr;
+  PetscFunctionBeginUser;
+  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_regularization_fields", &mark));
+  *registered = mark ? PETSC_TRUE : PETSC_FALSE;
+  if (!mark && mark_now) {
+    PetscContainer container;
+    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
+    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_regularization_fields", (PetscObject)container));
+    PetscCall(PetscContainerDestroy(&container));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 // Reproducible uniform and normal draws keyed by (seed, particle id): the same on any rank count.
 inline std::uint64_t SplitMix64(std::uint64_t x)
 {
@@ -108,8 +155,44 @@ inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stre
   return std::sqrt(-2 * std::log(u1)) * std::cos(2 * PETSC_PI * u2);
 }
 
+// Views of the regularisation state (all null unless the fields are registered).
+struct RegularizationFields {
+  PetscReal       *source = nullptr, *average = nullptr, *strain = nullptr, *disp = nullptr, *limit = nullptr, *omega = nullptr;
+  PetscInt        *bits = nullptr;
+  const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the swarm has them
+  const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver's swarm), m^3
+  PetscInt         dim         = 0;
+  // The particle size h_p of the crack band, m.
+  PetscReal Size(PetscInt q) const { return half_width0 ? 2 * half_width0[dim * q] : std::pow(volume0[q], 1.0 / dim); }
+
+  PetscErrorCode Get(DM swarm, SwarmAccess &fields)
+  {
+    PetscBool registered;
+    PetscFunctionBeginUser;
+    PetscCall(RegularizationFieldsRegistered(swarm, PETSC_FALSE, &registered));
+    if (!registered) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(fields.Get(kNonlocalSource, &source));
+    PetscCall(fields.Get(kNonlocalAverage, &average));
+    PetscCall(fields.Get(kNonlocalStrain, &strain));
+    PetscCall(fields.Get(kSofteningDisp, &disp));
+    PetscCall(fields.Get(kSofteningLimit, &limit));
+    PetscCall(fields.Get(kSoftening, &omega));
+    PetscCall(fields.Get(kSofteningBits, &bits));
+    std::vector<std::string> *names;
+    PetscCall(SwarmFieldNames(swarm, &names));
+    bool has_half_width = false;
+    for (const std::string &n : *names) has_half_width = has_half_width || n == "half_width0";
+    if (has_half_width) PetscCall(fields.Get("half_width0", &half_width0));
+    else PetscCall(fields.Get("volume0", &volume0));
+    PetscCall(DMGetDimension(swarm, &dim));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+};
+
 enum FailureBits : int { FailMelt = 1, FailTepla = 2, FailPorosity = 4, FailStability = 8, FailStrength = 16 };
 enum class FailureResponse : int { None = 0, ZeroStress = 1, NoTension = 2, NoShear = 3 };
+enum class Regularization : int { None = 0, Nonlocal = 1, CrackBand = 2 };
+const char *const kRegularizationNames[] = {"none", "nonlocal", "crack_band"};
 const char *const kResponseNames[] = {"none", "zero_stress", "no_tension", "no_shear"};
 const char *const kFailureNames[] = {"melt", "tepla", "porosity", "stability", "strength"};
 } // namespace
@@ -136,6 +219,13 @@ public:
   int             failure_criteria = FailMelt;
   FailureResponse failure_response = FailureResponse::None;
   PetscReal tepla_critical_porosity = 0.3; // f_c of eq. 22 and of the critical-porosity criterion
+  // Regularisation (issue 12; see the head of the file)
+  Regularization regularization        = Regularization::None;
+  PetscReal      regularization_length = 0; // ell, m (nonlocal)
+  PetscReal      fracture_energy       = 0; // G_f, J/m^2 (crack_band)
+  PetscBool      tepla_damage          = PETSC_FALSE; // TEPLA-F with the accumulated damage D
+
+  PetscReal NonlocalLength() const override { return regularization == Regularization::Nonlocal ? regularization_length : 0; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
   {
@@ -199,6 +289,24 @@ public:
       failure_response = (FailureResponse)response;
     }
     PetscCall(PetscOptionsReal("-failure_porosity", "Critical porosity of TEPLA-F (eq. 22) and of the porosity criterion (-)", "", tepla_critical_porosity, &tepla_critical_porosity, nullptr));
+    PetscCall(PetscOptionsBool("-failure_tepla_damage", "TEPLA-F (eq. 22) as (f/f_c)^2 + D^2 with the accumulated damage D of the damage model (as ElasticPlastic.cc, which the paper ran), instead of eps_p/eps_f at the current triaxiality", "", tepla_damage, &tepla_damage, nullptr));
+    {
+      int reg = (int)regularization;
+      PetscCall(OptionsChoice(PetscOptionsObject, "-regularization", "Length scale of failure (issue 12): none, nonlocal (failure drivers Delta D, Delta f averaged over -regularization_length), crack_band (linear softening after a criterion, energy -fracture_energy per unit crack area)", kRegularizationNames, 3, &reg, nullptr));
+      regularization = (Regularization)reg;
+      PetscBool set_length, set_energy;
+      PetscCall(PetscOptionsReal("-regularization_length", "Material length ell of the nonlocal average: radius of the weight (1 - r^2/ell^2)^2 per direction (m), > 0", "", regularization_length, &regularization_length, &set_length));
+      PetscCall(PetscOptionsReal("-fracture_energy", "Fracture energy G_f of the crack band: energy per unit crack area dissipated by the softening (J/m^2), > 0", "", fracture_energy, &fracture_energy, &set_energy));
+      if (regularization == Regularization::Nonlocal) {
+        PetscCheck(set_length, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-%sregularization nonlocal needs -%sregularization_length (m, > 0)", P.c_str(), P.c_str());
+        PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "regularization_length").c_str(), regularization_length, 0, 1.0, PETSC_TRUE));
+      }
+      if (regularization == Regularization::CrackBand) {
+        PetscCheck(set_energy, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-%sregularization crack_band needs -%sfracture_energy (J/m^2, > 0)", P.c_str(), P.c_str());
+        PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "fracture_energy").c_str(), fracture_energy, 0, 1e9, PETSC_TRUE));
+        PetscCheck(failure_criteria, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-%sregularization crack_band softens after a failure criterion: give -%sfailure_criteria", P.c_str(), P.c_str());
+      }
+    }
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
@@ -255,6 +363,7 @@ public:
   {
     PetscBool registered;
     PetscFunctionBeginUser;
+    PetscCall(RegisterRegularizationFields(swarm));
     PetscCall(FieldsRegistered(swarm, &registered));
     if (registered) PetscFunctionReturn(PETSC_SUCCESS);
     const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy, kPlasticWork, kPlasticHeat, kElasticEnergy};
@@ -266,16 +375,34 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
+  // The regularisation state, only when this material regularises (so runs without it keep their
+  // fields and bytes); registered before DMSwarmFinalizeFieldRegister like the rest.
+  PetscErrorCode RegisterRegularizationFields(DM swarm)
+  {
+    PetscBool registered;
+    PetscFunctionBeginUser;
+    PetscCall(RegularizationFieldsRegistered(swarm, regularization != Regularization::None ? PETSC_TRUE : PETSC_FALSE, &registered));
+    if (registered || regularization == Regularization::None) PetscFunctionReturn(PETSC_SUCCESS);
+    PetscCall(RegisterSwarmField(swarm, kNonlocalSource, 1 + kNonlocalComponents, PETSC_REAL, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kNonlocalAverage, kNonlocalComponents, PETSC_REAL, &registered_bytes_));
+    const char *real1[] = {kNonlocalStrain, kSofteningDisp, kSofteningLimit, kSoftening};
+    for (const char *name : real1) PetscCall(RegisterSwarmField(swarm, name, 1, PETSC_REAL, &registered_bytes_));
+    PetscCall(RegisterSwarmField(swarm, kSofteningBits, 1, PETSC_INT, &registered_bytes_));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
   PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) override
   {
     SwarmAccess       fields(swarm);
     const PetscInt   *material;
     const PetscInt64 *pid;
     StateFields       state;
+    RegularizationFields reg;
     PetscFunctionBeginUser;
     PetscCall(fields.Get("material", &material));
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
     PetscCall(state.Get(fields));
+    PetscCall(reg.Get(swarm, fields));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
@@ -289,6 +416,13 @@ public:
       D[p]                    = Dp > 0 ? Dp : 0;
       for (int a = 0; a < 9; ++a) R[9 * p + a] = (a % 4 == 0) ? 1 : 0;
       for (int h = 0; h < kMaxHistory; ++h) history[kMaxHistory * p + h] = h < flow->NumHistory() ? flow->InitialHistory(h) : 0;
+      if (reg.source) {
+        for (int a = 0; a <= kNonlocalComponents; ++a) reg.source[(1 + kNonlocalComponents) * p + a] = 0;
+        for (int a = 0; a < kNonlocalComponents; ++a) reg.average[kNonlocalComponents * p + a] = 0;
+        reg.disp[p] = reg.limit[p] = reg.omega[p] = 0;
+        reg.strain[p]                              = D[p];
+        reg.bits[p]                                        = 0;
+      }
     }
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -303,12 +437,27 @@ public:
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(state.Get(fields));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
+    RegularizationFields reg;
+    PetscCall(reg.Get(mp.swarm, fields));
+    const bool crack_band = regularization == Regularization::CrackBand;
+    // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
+    // neighbours, so there the local increments are their own average
+    const bool nonlocal = regularization == Regularization::Nonlocal && nonlocal_active_;
+    if (nonlocal) // the averages of the previous step's increments (src/mpm/nonlocal.cxx)
+      for (PetscInt q = 0; q < mp.n; ++q) {
+        if (mp.material[q] != id) continue;
+        PetscReal *avg = reg.average + kNonlocalComponents * q;
+        reg.strain[q] += avg[0];
+        f[q]   = PetscMin(PetscMax(f[q] + avg[1], 0.0), 1.0);
+        avg[0] = avg[1] = 0;
+      }
     c.dt             = dt;
     c.density0       = density_;
     c.taylor_quinney = taylor_quinney;
     c.adiabatic      = adiabatic ? 1 : 0;
     const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
     Mat3            R_new[kChunk], R_old[kChunk];
+    PetscReal       omega_old[kChunk]; // crack band: the softening at t_n (0 otherwise)
     PetscInt        p = 0;
     while (p < mp.n) {
       // gather the next chunk of this material's particles
@@ -324,7 +473,9 @@ public:
         R_new[k]         = PolarRotationFrom(F, R_old[k]); // warm start: R moves little per step
         const Mat3 D_lab = 0.5 * (L + L.transpose());
         const Mat3 Dh    = 0.5 * (R_old[k].transpose() * D_lab * R_old[k] + R_new[k].transpose() * D_lab * R_new[k]);
-        const Mat3 sh    = R_old[k].transpose() * sigma * R_old[k];
+        // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
+        omega_old[k]     = crack_band && !failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
+        const Mat3 sh    = R_old[k].transpose() * sigma * R_old[k] / (1 - omega_old[k]);
         const PetscReal mean = sh.trace() / 3, trD = Dh.trace();
         Mat3 Ddev = Dh;
         Ddev.diagonal().array() -= trD / 3;
@@ -388,7 +539,7 @@ public:
         for (int k = 0; k < c.n; ++k)
           if (failed[c.index[k]]) c.porosity[k] = failed_porosity[k];
       // 5. porosity, temperature, triaxiality; then damage and stability
-      PetscReal porosity_old[kChunk], plastic_work[kChunk];
+      PetscReal porosity_old[kChunk], plastic_work[kChunk], porosity_increment[kChunk];
       for (int k = 0; k < c.n; ++k) porosity_old[k] = c.porosity[k];
       for (int k = 0; k < c.n; ++k) {
         const PetscReal de = c.delta_plastic_strain[k];
@@ -398,7 +549,11 @@ public:
           const PetscReal z = (c.plastic_strain[k] - nucleation_strain) / nucleation_deviation;
           df += nucleation_amplitude * std::exp(-0.5 * z * z) * de;
         }
-        c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0);
+        // crack band: once softening, omega carries the damage and the voids stop growing (else
+        // the local void softening would go on inside the band, with no length)
+        if (crack_band && reg.limit[c.index[k]] > 0) df = 0;
+        porosity_increment[k] = df;
+        if (!nonlocal) c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0); // nonlocal: the average adds it
         // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
         // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
         const PetscReal matrix = settings.yield == YieldType::GTN ? 1 - porosity_old[k] : 1;
@@ -421,12 +576,28 @@ public:
         const PetscInt q = c.index[k];
         int            bits = 0;
         if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
-        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity, ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
+        PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+        if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
+        else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
         if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
         if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
         if (c.unstable[k]) bits |= FailStability;
         if (c.flow_stress[k] <= 0) bits |= FailStrength;
         bits &= failure_criteria;
+        PetscReal omega = 0; // crack band: softening at t_{n+1}
+        if (crack_band && !failed[q]) {
+          if (bits && reg.limit[q] == 0) { // the criterion starts the softening: u_f = 2 G_f / sigma_i
+            const PetscReal sigma_i = (settings.yield == YieldType::GTN ? 1 - c.porosity[k] : 1) * c.flow_stress[k];
+            reg.limit[q]            = 2 * fracture_energy / PetscMax(sigma_i, 1.0);
+            reg.bits[q]             = bits;
+          }
+          if (reg.limit[q] > 0) {
+            reg.disp[q] += reg.Size(q) * c.delta_plastic_strain[k]; // h_p Delta eps_p
+            omega = PetscMin(reg.disp[q] / reg.limit[q], 1.0);
+          }
+          bits = omega >= 1 ? (int)reg.bits[q] : 0; // fails once the softening is complete
+        }
         bool newly_failed = false;
         if (bits && !failed[q]) {
           failed[q]    = bits;
@@ -442,12 +613,20 @@ public:
           PetscReal       dropped = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
           const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
           if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
-          if (newly_failed) released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release
+          if (newly_failed && !crack_band) released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release (crack band: counted below)
           s_hat.setZero();
           if (keep_pressure) s_hat.diagonal().array() -= p;
           Mat3Map(c.deviator[k]).setZero();
           c.equivalent_stress[k] = 0;
         }
+        // crack band: from the criterion to the end of the softening (its last step included) the
+        // work is the band's dissipation
+        const bool softening = crack_band && reg.limit[q] > 0 && (!failed[q] || newly_failed);
+        if (crack_band && !failed[q]) {
+          s_hat *= 1 - omega; // the softened stress; the particle state stays the intact one
+          reg.omega[q] = omega;
+        }
+        const PetscReal elastic_old = elastic[q];
         {
           const PetscReal p = -s_hat.trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
           Mat3            dev = s_hat;
@@ -458,7 +637,18 @@ public:
         const Mat3      sigma_old = sigma;
         sigma                     = R_new[k] * s_hat * R_new[k].transpose();
         Mat3Map(R + 9 * q)        = R_new[k];
-        mp.internal_energy[q] += StressWork(sigma_old.data(), sigma.data(), mp.L + 9 * q, mp.volume[q], dt);
+        const PetscReal stress_work = StressWork(sigma_old.data(), sigma.data(), mp.L + 9 * q, mp.volume[q], dt);
+        mp.internal_energy[q] += stress_work;
+        if (softening) { // crack band: what the softening band dissipates, stress work less stored elastic energy
+          released[q] += stress_work - (elastic[q] - elastic_old);
+          plastic_work[k] = 0;
+        }
+        if (reg.source && regularization == Regularization::Nonlocal) { // the drivers for the average
+          PetscReal *src = reg.source + (1 + kNonlocalComponents) * q;
+          src[0]         = failed[q] && failure_response != FailureResponse::None ? 0 : mp.mass[q];
+          src[1]         = c.damage[k] - D[q]; // Delta D of this step (D[q] is still D_n)
+          src[2]         = porosity_increment[k];
+        }
         mp.temperature[q] = c.temperature[k];
         mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
         eps[q]            = c.plastic_strain[k];
@@ -479,7 +669,10 @@ public:
 
   std::vector<OutputField> OutputFields() const override
   {
-    return {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
+    std::vector<OutputField> out = {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
+    if (regularization == Regularization::Nonlocal) out.push_back({kNonlocalStrain, 1, false});
+    if (regularization == Regularization::CrackBand) out.push_back({kSoftening, 1, false});
+    return out;
   }
 
   // Wave speed from the reference moduli (before the first step).
@@ -502,6 +695,9 @@ public:
     PetscCall(flow->View(viewer));
     PetscCall(damage->View(viewer));
     for (auto &s : stability) PetscCall(s->View(viewer));
+    if (regularization == Regularization::Nonlocal) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: nonlocal, length %g m (Delta D and Delta f averaged; TEPLA-F with the nonlocal damage)\n", (double)regularization_length));
+    if (regularization == Regularization::CrackBand) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: crack_band, fracture energy %g J/m^2 (linear softening over u_f = 2 G_f / sigma_i after a criterion)\n", (double)fracture_energy));
+    if (tepla_damage) PetscCall(PetscViewerASCIIPrintf(viewer, "  TEPLA-F with the accumulated damage D\n"));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off", (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
