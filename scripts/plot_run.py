@@ -375,18 +375,26 @@ def plot_gas_energy(outdir, summary):
     return out
 
 
-def plot_burst(outdir, summary):
-    """The last particle output over the gas pressure of the same step."""
+def last_particles_and_pressure(outdir):
+    """The last particle output and the gas pressure of the same step, or None without one."""
     ppath, _ = last_particle_file(outdir)
     step = int(re.fullmatch(r"particles_(\d+)\.h5", os.path.basename(ppath)).group(1))
     gpath = os.path.join(outdir, "gas_%06d.h5" % step)
     if not os.path.exists(gpath):
         return None
     data, time, _ = read_particles(ppath)
-    x = data["coordinates"]
-    n, dim = x.shape
     with h5py.File(gpath, "r") as h:
         p = np.asarray(h["cells"]["pressure"])
+    return data, time, data["coordinates"], p
+
+
+def plot_burst(outdir, summary):
+    """The last particle output over the gas pressure of the same step."""
+    last = last_particles_and_pressure(outdir)
+    if last is None:
+        return None
+    data, time, x, p = last
+    n, dim = x.shape
     p = p[p.shape[0] // 2] if p.shape[0] > 1 else p[0]
     lower = summary.get("grid_lower", [0, 0, 0])
     upper = summary.get("grid_upper", [p.shape[1], p.shape[0], 1])
@@ -423,21 +431,13 @@ def plot_burst3d(outdir, summary):
     """3-D runs: the fragments seen in perspective, and the gas in the planes z = 0 (across the
     charge) and y = 0 (along the axis, through the wall and the cap), products volume fraction over
     the pressure, which shows where the gas escapes."""
-    ppath, _ = last_particle_file(outdir)
-    step = int(re.fullmatch(r"particles_(\d+)\.h5", os.path.basename(ppath)).group(1))
-    gpath = os.path.join(outdir, "gas_%06d.h5" % step)
-    if not os.path.exists(gpath):
+    last = last_particles_and_pressure(outdir)
+    if last is None or last[2].shape[1] != 3:
         return None
-    data, time, _ = read_particles(ppath)
-    x = data["coordinates"]
-    n, dim = x.shape
-    if dim != 3:
-        return None
+    data, time, x, p = last  # p: [z][y][x]
+    n = x.shape[0]
     frag = as_rows(data["fragment"], n)[:, 0] if "fragment" in data else np.full(n, -1)
     material = as_rows(data["material"], n)[:, 0] if "material" in data else np.zeros(n)
-    with h5py.File(gpath, "r") as h:
-        cells = h["cells"]
-        p = np.asarray(cells["pressure"])  # [z][y][x]
     lower = summary.get("grid_lower", [0, 0, 0])
     upper = summary.get("grid_upper", [1, 1, 1])
     fig = plt.figure(figsize=(17, 5.2), dpi=DPI)
