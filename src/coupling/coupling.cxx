@@ -161,7 +161,7 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   IceSolver   &ice = *sim.ice;
   PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.coupling->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_project, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(c.mass_local));
   PetscCall(VecGetArray(c.mass_local, &nodes));
   ProjectKernel kernel{sim, c, nodes};
@@ -201,7 +201,7 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(VecRestoreArray(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice));
-  PetscCall(PetscLogEventEnd(sim.coupling->ev_project, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_project, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -214,7 +214,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   PetscInt           xs[3], xm[3];
   const PetscInt     dim = ice.dim, dof = c.IncDof(dim);
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.coupling->ev_pressure, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_pressure, 0, 0, 0, 0));
   // nodal pressure: the mean of the cells around each owned node (ghost cells carry the boundary
   // conditions), then to the ghost nodes
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
@@ -235,7 +235,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   ParticleKernel kernel{sim, c, a, true};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(c.inc_local, &a));
-  PetscCall(PetscLogEventEnd(sim.coupling->ev_pressure, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_pressure, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -248,7 +248,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   const LocalNodeIndex index(sim.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.coupling->ev_solid_velocity, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_solid_velocity, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
   PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
   PetscCall(IceGetLocalArray(ice, &a));
@@ -271,7 +271,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice)); // the increments of ghost cells are taken against these
-  PetscCall(PetscLogEventEnd(sim.coupling->ev_solid_velocity, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_solid_velocity, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -285,7 +285,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscInt           xs[3], xm[3];
   const PetscInt     dim = ice.dim, dof = c.IncDof(dim), vdof = g.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.coupling->ev_increments, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_increments, 0, 0, 0, 0));
   // per owned node and velocity field: the solid-mass weighted mean of the increments of the cells
   // around it, over the solids that move in that field
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
@@ -333,7 +333,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
   PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
-  PetscCall(PetscLogEventEnd(sim.coupling->ev_increments, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(c.ev_increments, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

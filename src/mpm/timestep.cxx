@@ -27,7 +27,9 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
       if (bound < local) local = bound, limit = p;
     }
   PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, sim.comm));
-  if (limit >= 0 && local == global) {
+  PetscBool info = PETSC_FALSE;
+  PetscCall(PetscInfoEnabled(DM_CLASSID, &info)); // the limiting particle is looked up only for -info
+  if (info && limit >= 0 && local == global) {
     const PetscInt64 *pid;
     const PetscInt   *material;
     PetscCall(fields.Get(DMSwarmField_pid, &pid));
