@@ -322,9 +322,7 @@ struct BurnParticles {
         const PetscReal dr = mass[p] / V, cv = ice.materials[m].eos->cv;
         AddConversion(ice, idx, m, -dr, v + DIM * p, cv * T[p]);
         AddConversion(ice, idx, c.product[s], dr, v + DIM * p, cv * T[p] + c.burn[s]->HeatOfReaction());
-        c.burnt_mass += mass[p];
-        sim.diag.removed_mass += mass[p];
-        sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
+        c.burnt_mass += mass[p]; // RemoveParticles books its mass and energy as removed
       }
     }
     PetscCall(fields.RestoreAll());
