@@ -6,7 +6,10 @@
 --study anvil: why the B-spline foot is narrow. Copper 190 m/s (Johnson-Cook, axisymmetric, MUSL) with
   cpGIMP and B-spline, each on the scene's rigid anvil (its own velocity field, frictionless contact)
   and on a symmetry wall at the anvil's face instead (the grid starts at the anvil top, -bc_ymin
-  symmetry: the same frictionless impact without a contact algorithm). Writes taylor_anvil_wall.csv.
+  symmetry: the same frictionless impact without a contact algorithm), and B-spline on the anvil
+  seeded with one particle per cell (its top particle half a cell below the face, so that its
+  B-spline support ends at the node row one cell above the face instead of covering it). Writes
+  taylor_anvil_wall.csv.
 --study floor: is the MTS rate floor (-copper_flow_stress_min_rate 1, which the validation cases of
   tests/verify_taylor.py set) still needed? Annealed copper (MTS) at 130, 146 and 190 m/s with the
   model's default floor 1e-3 /s and with 1 /s. Writes taylor_mts_floor_cpdN.csv.
@@ -96,7 +99,10 @@ def main():
     if a.study in ("anvil", "all"):
         rows = []
         for shape in ("cpgimp", "bspline2"):
-            for support, extra in (("rigid anvil", []), ("symmetry wall", wall_options(a.cpd))):
+            supports = [("rigid anvil", []), ("symmetry wall", wall_options(a.cpd))]
+            if shape == "bspline2":  # one anvil particle per cell: no rigid mass on the node row one cell inside the rod
+                supports.append(("rigid anvil 1 per cell", ["-anvil_particles_per_cell", "1"]))
+            for support, extra in supports:
                 s, end = taylor(a.burst, 190, "copper_ofhc_jc", a.cpd, ["-mpm_shape_type", shape, *extra])
                 rows.append(row(f"cu190 JC {shape} {support} cpd {a.cpd}", 190, s, end))
                 report(rows[-1])
