@@ -3,13 +3,13 @@
 
   scripts/study_taylor_contact.py --burst build/burst [--out doc/figures] [--cpd 16] [--study anvil|floor|all]
 
---study anvil: why the B-spline foot is narrow. Copper 190 m/s (Johnson-Cook, axisymmetric, MUSL) with
-  cpGIMP and B-spline, each on the scene's rigid anvil (its own velocity field, frictionless contact)
-  and on a symmetry wall at the anvil's face instead (the grid starts at the anvil top, -bc_ymin
-  symmetry: the same frictionless impact without a contact algorithm), and B-spline on the anvil
-  seeded with one particle per cell (its top particle half a cell below the face, so that its
-  B-spline support ends at the node row one cell above the face instead of covering it). Writes
-  taylor_anvil_wall.csv.
+--study anvil: why the B-spline foot was narrow. Copper 190 m/s (Johnson-Cook, axisymmetric, MUSL) with
+  cpGIMP and B-spline, each on the scene's rigid anvil (its own velocity field, frictionless contact,
+  seeded one particle per cell) and on a symmetry wall at the anvil's face instead (the grid starts at
+  the anvil top, -bc_ymin symmetry: the same frictionless impact without a contact algorithm), and
+  B-spline on the anvil seeded 2 per cell as the scene did before c9ecfa8 (its top particles a quarter
+  cell below the face, so that their B-spline support covers the node row one cell above the face,
+  inside the rod). Writes taylor_anvil_wall.csv.
 --study floor: is the MTS rate floor (-copper_flow_stress_min_rate 1, which the validation cases of
   tests/verify_taylor.py set) still needed? Annealed copper (MTS) at 130, 146 and 190 m/s with the
   model's default floor 1e-3 /s and with 1 /s. Writes taylor_mts_floor_cpdN.csv.
@@ -100,8 +100,8 @@ def main():
         rows = []
         for shape in ("cpgimp", "bspline2"):
             supports = [("rigid anvil", []), ("symmetry wall", wall_options(a.cpd))]
-            if shape == "bspline2":  # one anvil particle per cell: no rigid mass on the node row one cell inside the rod
-                supports.append(("rigid anvil 1 per cell", ["-anvil_particles_per_cell", "1"]))
+            if shape == "bspline2":  # the anvil seeded like the rod (the scene's seeding before c9ecfa8): rigid mass inside the rod
+                supports.append(("rigid anvil 2 per cell", ["-anvil_particles_per_cell", "2"]))
             for support, extra in supports:
                 s, end = taylor(a.burst, 190, "copper_ofhc_jc", a.cpd, ["-mpm_shape_type", shape, *extra])
                 rows.append(row(f"cu190 JC {shape} {support} cpd {a.cpd}", 190, s, end))
