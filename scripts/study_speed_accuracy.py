@@ -10,7 +10,11 @@ resolutions on
   axisym  the axisymmetric manufactured solution (tests/decks/mms_axisymmetric.opts), the same;
   taylor  the OFHC copper Taylor test at 190 m/s, axisymmetric (options/scenes/taylor.opts): the larger
           of |Lf| and |Df| errors against the experiment (centres), 8/16/32 cells per diameter;
-          and its numerical error against the method's own finest run.
+          and its numerical error against the method's own finest run;
+  cylinder the prescribed-pressure 4340 cylinder (options/scenes/cylinder2d_4340.opts, quarter, MUSL,
+          to 120 us): |energy balance error| (the energy error; the fragment count, which has no
+          converged value without a failure length, and the Grady band go into the CSV beside it),
+          40/80/160 cells (--cylinder-levels).
 Cost: wall time of the stepping (s) and particle-steps; memory as bytes per particle x particles.
 Writes OUT/speed_accuracy.csv and OUT/speed_accuracy_<problem>.png (log-log, one line per method,
 the Pareto front as black rings: no other run is both cheaper and more accurate). --quick runs two
@@ -54,6 +58,7 @@ def main():
     p.add_argument("--out", default=os.path.join(ROOT, "doc/figures"))
     p.add_argument("--problems", default="mms,axisym,taylor")
     p.add_argument("--taylor-levels", default="8,16", help="cells per diameter of the Taylor runs")
+    p.add_argument("--cylinder-levels", default="40,80,160", help="cells across the quarter of the cylinder runs")
     p.add_argument("--quick", action="store_true")
     p.add_argument("--cost", default="particle_steps", choices=["particle_steps", "wall_s"],
                    help="x axis: particle-steps (deterministic) or the stepping wall time (meaningful on an unloaded machine)")
@@ -65,8 +70,8 @@ def main():
     rows = []
     if a.replot:
         with open(os.path.join(a.out, "speed_accuracy.csv")) as f:
-            rows = [{k: (v if k in ("problem", "shape", "transfer", "scheme") else float(v)) for k, v in r.items()} for r in csv.DictReader(f)]
-        problems = sorted({r["problem"] for r in rows}, key=["mms", "axisym", "taylor"].index)
+            rows = [{k: (v if k in ("problem", "shape", "transfer", "scheme") else float(v or "nan")) for k, v in r.items()} for r in csv.DictReader(f)]
+        problems = sorted({r["problem"] for r in rows}, key=["mms", "axisym", "taylor", "cylinder"].index)
     for prob in ([] if a.replot else problems):
         if a.quick:
             methods = [("cpgimp", "flip", "usl"), ("bspline2", "apic", "usl")]
@@ -74,6 +79,9 @@ def main():
         elif prob == "taylor":
             methods = [(s, "flip", "musl") for s in shapes] + [("cpgimp", "apic", "musl"), ("cpgimp", "xpic2", "musl")]
             levels = [int(v) for v in a.taylor_levels.split(",")]
+        elif prob == "cylinder":
+            methods = [(s, "flip", "musl") for s in shapes] + [("cpgimp", "apic", "musl")]
+            levels = [int(v) for v in a.cylinder_levels.split(",")]
         else:
             methods = [(s, t, "usl") for s in shapes for t in TRANSFERS]
             levels = [8, 16, 32]
@@ -83,6 +91,9 @@ def main():
                 if prob in ("mms", "axisym"):
                     deck = "tests/decks/mms_axis_aligned.opts" if prob == "mms" else "tests/decks/mms_axisymmetric.opts"
                     extra = ["-grid_cells", f"{n},{n}", "-mpm_dt", "2e-5"]
+                elif prob == "cylinder":
+                    deck = "options/scenes/cylinder2d_4340.opts"
+                    extra = ["-grid_cells", f"{n},{n}"]
                 else:
                     deck = "options/scenes/taylor.opts"
                     extra = ["-taylor_cells_per_diameter", str(n), "-mpm_cfl", "0.3" if transfer == "apic" and shape == "linear" else "0.4"]
@@ -98,19 +109,31 @@ def main():
                     if finest is None:
                         finest = (t["Lf_centres"], t["Df_centres"])
                     numerical = max(abs(t["Lf_centres"] - finest[0]) / finest[0], abs(t["Df_centres"] - finest[1]) / finest[1])
+                elif prob == "cylinder":
+                    error = abs(s["energy_balance_error"])
+                    if finest is None:
+                        finest = s["fragment_count"]
+                    numerical = abs(s["fragment_count"] - finest)  # fragments away from the method's finest run
                 else:
                     error, numerical = s["displacement_error_rms"], s["displacement_error_rms"]
                 row = dict(problem=prob, shape=shape, transfer=transfer, scheme=scheme, resolution=n, error=error, numerical_error=numerical,
-                           wall_s=s["wall_time_s"], particle_steps=s["steps"] * s["particles"], memory_bytes=s["bytes_per_particle"] * s["particles"])
+                           wall_s=s["wall_time_s"], particle_steps=s["steps"] * s["particles"], memory_bytes=s["bytes_per_particle"] * s["particles"],
+                           fragments=s.get("fragment_count", "nan"), grady_shear=s["grady_shear"]["sector"] if "grady_shear" in s else "nan",
+                           grady_tension=s["grady_tension"]["sector"] if "grady_tension" in s else "nan")
                 rows.append(row)
                 print(f"{prob} {shape} {transfer} {scheme} n={n}: error {error:.3e}, numerical {numerical:.3e}, wall {s['wall_time_s']:.2f} s, {row['particle_steps']:.3g} particle-steps", flush=True)
     path = os.path.join(a.out, "speed_accuracy.csv")
     if not a.replot:
+        if os.path.exists(path) and not a.quick:  # keep the rows of the problems not rerun
+            with open(path) as f:
+                kept = [r for r in csv.DictReader(f) if r["problem"] not in problems]  # as written (strings)
+            rows = kept + rows
         with open(path, "w", newline="") as f:
-            w = csv.DictWriter(f, fieldnames=list(rows[0]))
+            w = csv.DictWriter(f, fieldnames=list(dict.fromkeys(k for r in rows for k in r)), restval="nan")
             w.writeheader()
             w.writerows(rows)
         print(f"wrote {path}")
+        rows = [{k: (v if k in ("problem", "shape", "transfer", "scheme") or not isinstance(v, str) else float(v or "nan")) for k, v in r.items()} for r in rows]
     for prob in problems:
         sub = [r for r in rows if r["problem"] == prob]
         fig, ax = plt.subplots(figsize=(6.5, 4.5))
@@ -121,9 +144,14 @@ def main():
         front = pareto(pts)
         ax.loglog([pts[i][0] for i in front], [pts[i][1] for i in front], "ko", mfc="none", ms=10, label="Pareto front")
         ax.set_xlabel("particle-steps" if a.cost == "particle_steps" else "wall time of the stepping (s, 1 core)")
-        ax.set_ylabel({"mms": "RMS displacement error (m)", "axisym": "RMS displacement error (m)", "taylor": "max(|Lf|, |Df|) error vs experiment"}[prob])
+        ax.set_ylabel({"mms": "RMS displacement error (m)", "axisym": "RMS displacement error (m)", "taylor": "max(|Lf|, |Df|) error vs experiment",
+                       "cylinder": "|energy balance error| / initial energy"}[prob])
         ax.set_title({"mms": "2-D manufactured solution, 8/16/32 cells", "axisym": "axisymmetric manufactured solution, 8/16/32 cells",
-                      "taylor": "Taylor, Cu 190 m/s, axisymmetric, 8/16/32 cells per D0"}[prob], fontsize=9)
+                      "taylor": "Taylor, Cu 190 m/s, axisymmetric, 8/16/32 cells per D0",
+                      "cylinder": "4340 cylinder, prescribed pressure, " + "/".join(str(int(v)) for v in sorted({r["resolution"] for r in sub})) + " cells"}[prob], fontsize=9)
+        if prob == "cylinder":  # the fragment count of each run beside its point
+            for r in sub:
+                ax.annotate(f"{int(r['fragments'])}", (r[a.cost], r["error"]), textcoords="offset points", xytext=(3, 3), fontsize=6)
         ax.legend(fontsize=6, ncol=2)
         ax.grid(True, which="both", alpha=0.3)
         fig.tight_layout()

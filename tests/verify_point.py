@@ -3,8 +3,10 @@
 Each subcommand runs the driver, compares with a closed form, prints the measured figures with a
 verdict, and exits non-zero on failure.
 
-  simple_shear     Green-Naghdi stress against Dienes' closed form up to gamma = 10; the Jaumann
-                   (linear_elastic) model against its own closed form, and the two differ (models.md 7.5)
+  simple_shear     Green-Naghdi stress against Dienes' closed form up to gamma = 10 (second order), the
+                   Jaumann (linear_elastic) model against its own closed form (first order, within the
+                   bound of its rotation/stretch split), neo-Hookean exact; the two rates differ:
+                   Jaumann oscillates, Green-Naghdi grows monotonically (models.md 7.5)
   linear_hardening uniaxial stress with linear hardening against the closed-form stress-strain
                    curve; stress on the yield surface at every plastic step; step-size consistency
   rotation         uniaxial strain with a superposed rigid rotation: the stress after a full (and a
@@ -55,28 +57,71 @@ def green_naghdi(gamma):
     return s11, s12
 
 
-def simple_shear(args):
-    G = 1e6
-    failures = []
-    with tempfile.TemporaryDirectory() as tmp:
-        gn = point(args.burst, ["-options_file", METAL, "-metal_flow_stress_yield_stress", "1e30", "-metal_shear_modulus", str(G), "-point_path", "simple_shear",
-                                "-point_rate", "1", "-point_final_strain", "10", "-point_steps", str(args.steps)], os.path.join(tmp, "gn.csv"))
-        ja = point(args.burst, ["-materials", "metal", "-metal_model", "linear_elastic", "-metal_density", "7800", "-metal_youngs_modulus", str(2 * G * 1.3),
-                                "-metal_poisson_ratio", "0.3", "-point_path", "simple_shear", "-point_rate", "1", "-point_final_strain", "10",
-                                "-point_steps", str(args.steps)], os.path.join(tmp, "ja.csv"))
+def shear_runs(burst, steps, tmp, final=10.0, G=1e6):
+    """Simple shear (L_xy = 1 /s) to gamma = final of three elastic solids with shear modulus G:
+    elastic_plastic with an unreachable yield stress (Green-Naghdi: co-rotational with the polar R),
+    linear_elastic (Jaumann, Hughes-Winget) and neo_hookean (hyperelastic). Returns the three CSVs."""
+    common = ["-point_path", "simple_shear", "-point_rate", "1", "-point_final_strain", repr(final), "-point_steps", str(steps)]
+    elastic = ["-metal_density", "7800", "-metal_youngs_modulus", repr(2 * G * 1.3), "-metal_poisson_ratio", "0.3"]
+    gn = point(burst, ["-options_file", METAL, "-metal_flow_stress_yield_stress", "1e30", "-metal_shear_modulus", repr(G), *common], os.path.join(tmp, "gn.csv"))
+    ja = point(burst, ["-materials", "metal", "-metal_model", "linear_elastic", *elastic, *common], os.path.join(tmp, "ja.csv"))
+    nh = point(burst, ["-materials", "metal", "-metal_model", "neo_hookean", *elastic, *common], os.path.join(tmp, "nh.csv"))
+    return gn, ja, nh
+
+
+def shear_errors(gn, ja, nh, G=1e6):
+    """max |sigma/G - closed form| over the path for each rate (models.md 7.5)."""
     g = gn["strain"]
     s11, s12 = green_naghdi(g)
     e_gn = max(np.abs(gn["stress_xx"] / G - s11).max(), np.abs(gn["stress_xy"] / G - s12).max(), np.abs(gn["stress_yy"] / G + s11).max())
-    e_ja = max(np.abs(ja["stress_xx"] / G - (1 - np.cos(g))).max(), np.abs(ja["stress_xy"] / G - np.sin(g)).max())
-    differ = np.abs(ja["stress_xy"][-1] - gn["stress_xy"][-1]) / G
-    print(f"simple shear to gamma = 10 in {args.steps} steps: Green-Naghdi at gamma 10: s11/G {gn['stress_xx'][-1] / G:.4f} (exact {s11[-1]:.4f}), "
-          f"s12/G {gn['stress_xy'][-1] / G:.4f} (exact {s12[-1]:.4f}); Jaumann s12/G {ja['stress_xy'][-1] / G:.4f} (exact {math.sin(10):.4f})")
-    check("elastic_plastic (Green-Naghdi) max |sigma/G - closed form|", e_gn, args.tol, failures)
-    check("linear_elastic (Jaumann) max |sigma/G - closed form|", e_ja, args.tol, failures)
-    ok = differ > 1.0
-    print(f"  the two rates differ at gamma 10: |d s12/G| = {differ:.3f} > 1 {'OK' if ok else 'FAIL'}")
-    if not ok:
-        failures.append("rates differ")
+    e_ja = max(np.abs(ja["stress_xx"] / G - (1 - np.cos(g))).max(), np.abs(ja["stress_xy"] / G - np.sin(g)).max(),
+               np.abs(ja["stress_yy"] / G + (1 - np.cos(g))).max())
+    # neo-Hookean, J = 1: sigma12 = G gamma, sigma11 = G gamma^2, sigma22 = 0 (relative to max(1, |exact|))
+    e_nh = max((np.abs(nh["stress_xy"] / G - g) / np.maximum(1, g)).max(), (np.abs(nh["stress_xx"] / G - g ** 2) / np.maximum(1, g ** 2)).max(),
+               np.abs(nh["stress_yy"] / G).max())
+    return e_gn, e_ja, e_nh
+
+
+def simple_shear(args):
+    """Jaumann against Green-Naghdi under large rotation (models.md 7.5), to gamma = 10.
+    Tolerances: the Green-Naghdi update (polar R of F, deviator integrated in the rotated frame at
+    the mid-step) is second order: its error must fall at order >= 1.9 from 2000 to 4000 steps and
+    stay below 1e-5 G (measured 5.2e-7; the chart resolves 1e-3). The Jaumann update
+    sigma_{n+1} = Q sigma_n Q^T + dt C:D (Hughes-Winget) is exact for a pure spin but splits rotation
+    and stretching: each step's local error is G dgamma^2 |[W, D]| = G dgamma^2 / 2 in simple shear, so
+    the global error is bounded by G gamma dgamma / 2 (1.25e-2 G at 4000 steps; measured 2.5e-3 G) and
+    falls at first order (>= 0.9 required). The neo-Hookean stress depends on F alone: exact to the
+    CSV's 10 digits (1e-8 relative). The physics: Jaumann sigma12 oscillates (|sigma12| <= G, turns
+    negative past gamma = pi), Green-Naghdi sigma12 grows monotonically."""
+    G = 1e6
+    failures = []
+    errors = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for steps in (args.steps // 2, args.steps):
+            gn, ja, nh = shear_runs(args.burst, steps, tmp, G=G)
+            errors[steps] = shear_errors(gn, ja, nh, G)
+    g = gn["strain"]
+    s11, s12 = green_naghdi(g)
+    n0, n1 = args.steps // 2, args.steps
+    order = [math.log(errors[n0][k] / errors[n1][k]) / math.log(n1 / n0) for k in range(2)]
+    dgamma = 10.0 / n1
+    print(f"simple shear to gamma = 10 in {n1} steps: Green-Naghdi at gamma 10: s11/G {gn['stress_xx'][-1] / G:.4f} (exact {s11[-1]:.4f}), "
+          f"s12/G {gn['stress_xy'][-1] / G:.4f} (exact {s12[-1]:.4f}); Jaumann s12/G {ja['stress_xy'][-1] / G:.4f} (exact {math.sin(10):.4f}); "
+          f"neo-Hookean s12/G {nh['stress_xy'][-1] / G:.4f} (exact 10)")
+    print(f"  max errors/G at {n0} and {n1} steps: Green-Naghdi {errors[n0][0]:.3e}, {errors[n1][0]:.3e} (order {order[0]:.2f}); "
+          f"Jaumann {errors[n0][1]:.3e}, {errors[n1][1]:.3e} (order {order[1]:.2f})")
+    check("elastic_plastic (Green-Naghdi) max |sigma/G - Dienes|", errors[n1][0], 1e-5, failures)
+    check("Green-Naghdi order deficit 1.9 - order", 1.9 - order[0], 0, failures)
+    check("linear_elastic (Jaumann) max |sigma/G - closed form|", errors[n1][1], 0.5 * 10.0 * dgamma, failures)
+    check("Jaumann order deficit 0.9 - order", 0.9 - order[1], 0, failures)
+    check("neo_hookean max relative |sigma/G - closed form|", errors[n1][2], 1e-8, failures)
+    # the physics each rate gives: Jaumann bounded and oscillating, Green-Naghdi monotonic
+    ja12, gn12 = ja["stress_xy"] / G, gn["stress_xy"] / G
+    check("Jaumann: max sigma12/G - 1 (bounded by G)", ja12.max() - 1, errors[n1][1], failures)
+    check("Jaumann: sigma12/G at gamma = 4 (negative past pi; exact -0.757)", ja12[np.argmin(np.abs(g - 4))] + 0.7, 0, failures)
+    check("Green-Naghdi: largest decrease of sigma12 along the path (monotonic)", -np.diff(gn12).min(), 0, failures)
+    differ = abs(ja12[-1] - gn12[-1])
+    check("the two rates differ at gamma 10: 1 - |d s12/G|", 1 - differ, 0, failures)
     finish("simple_shear", failures)
 
 
@@ -262,8 +307,7 @@ def main():
     p.add_argument("--burst", required=True)
     sub = p.add_subparsers(dest="cmd", required=True)
     s = sub.add_parser("simple_shear")
-    s.add_argument("--steps", type=int, default=4000)
-    s.add_argument("--tol", type=float, default=1e-2)
+    s.add_argument("--steps", type=int, default=4000, help="steps of the finer run (the coarser has half)")
     sub.add_parser("linear_hardening")
     sub.add_parser("heating")
     sub.add_parser("jc_4340")
