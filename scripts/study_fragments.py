@@ -40,7 +40,7 @@ def regularization_options(args, reg):
         return [f"-{material}_regularization", "nonlocal", f"-{material}_regularization_length", str(args.length)]
     if reg == "crack_band":
         return [f"-{material}_regularization", "crack_band", f"-{material}_fracture_energy", str(args.fracture_energy)]
-    return []
+    return [f"-{material}_regularization", "none"]  # explicit: the cylinder scenes ship the crack band
 
 
 def fragment_masses(out, summary):
@@ -51,13 +51,13 @@ def fragment_masses(out, summary):
     return sorted(masses, reverse=True)
 
 
-def run(args, reg, cells, ppc):
+def run(args, reg, cells, ppc, extra=()):
     geometry = "wall" if "cylinder" in args.scene else "ring"
     with tempfile.TemporaryDirectory() as out:
         cmd = ([*MPIEXEC, "-n", str(args.ranks)] if args.ranks > 1 else []) + [
             args.burst, "-options_file", os.path.join(ROOT, args.scene), "-output_dir", out, "-grid_cells", f"{cells},{cells}",
             f"-{geometry}_particles_per_cell", str(ppc), "-output_interval", "0", "-progress", "false", "-monitor_interval", "100000",
-            *regularization_options(args, reg)]
+            *regularization_options(args, reg), *extra]
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
         if proc.returncode:
             raise SystemExit(proc.stdout[-2000:] + proc.stderr[-2000:])
