@@ -52,7 +52,8 @@ def main():
         with tempfile.TemporaryDirectory() as out:
             cmd = ([*MPIEXEC, "-n", str(args.ranks)] if args.ranks > 1 else []) + [
                 args.burst, "-options_file", os.path.join(ROOT, args.scene), "-output_dir", out, "-output_interval", "0", "-progress", "false",
-                "-monitor_interval", "50", *[e.format(m=mat) for e in extra]] + (["-grid_cells", "80,80"] if args.quick else [])
+                # the failure treatments are compared without a length (the scene ships the crack band)
+                "-monitor_interval", "50", f"-{mat}_regularization", "none", *[e.format(m=mat) for e in extra]] + (["-grid_cells", "80,80"] if args.quick else [])
             proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
             if proc.returncode:
                 raise SystemExit(proc.stdout[-2000:] + proc.stderr[-2000:])
