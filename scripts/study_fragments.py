@@ -107,20 +107,22 @@ def plot(rows, args, png):
     ax.set_yscale("log")
     ax.set_title("failure energy (erosion: released elastic energy; crack band: softening work)", fontsize=9)
     ax.legend(fontsize=7)
-    ax = axes[2]
+    plot_mass_distribution(axes[2], rows, regs, lambda r: f"{labels[r['regularization']]}: {r['cells']} cells, {r['particles_per_cell']}x{r['particles_per_cell']}", fade=0.12)
+    fig.savefig(png, dpi=120, bbox_inches="tight")
+
+
+def plot_mass_distribution(ax, rows, regs, label, fade):
+    """Cumulative fragment-mass distribution of every run, one colour per regularisation."""
     for i, reg in enumerate(regs):
         for j, r in enumerate(r for r in rows if r["regularization"] == reg):
             masses = sorted((float(m) for m in r["fragment_masses_kg"].split(";") if m), reverse=True)
-            if not masses:
-                continue
-            ax.step(masses, range(1, len(masses) + 1), where="post", color=f"C{i}", alpha=0.9 - 0.12 * j,
-                    label=f"{labels[reg]}: {r['cells']} cells, {r['particles_per_cell']}x{r['particles_per_cell']}")
+            if masses:
+                ax.step(masses, range(1, len(masses) + 1), where="post", color=f"C{i}", alpha=0.9 - fade * j, label=label(r))
     ax.set_xscale("log")
     ax.set_xlabel("fragment mass m (kg per m of length)")
     ax.set_ylabel("fragments of mass >= m")
     ax.set_title("cumulative fragment-mass distribution", fontsize=9)
     ax.legend(fontsize=6)
-    fig.savefig(png, dpi=120, bbox_inches="tight")
 
 
 def main():

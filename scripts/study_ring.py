@@ -53,18 +53,7 @@ def plot(rows, args, png):
     ax.set_ylim(0, max(int(r["fragments"]) for r in rows) + 4)
     ax.set_title("ring2d (300 m/s, 4340, 600 K): grid against porosity seed", fontsize=9)
     ax.legend(fontsize=7)
-    ax = axes[1]
-    for i, reg in enumerate(regs):
-        for j, r in enumerate(r for r in rows if r["regularization"] == reg):
-            masses = sorted((float(m) for m in r["fragment_masses_kg"].split(";") if m), reverse=True)
-            if masses:
-                ax.step(masses, range(1, len(masses) + 1), where="post", color=f"C{i}", alpha=0.9 - 0.1 * j,
-                        label=f"{labels[reg]}: {r['cells']} cells, seed {r['seed']}")
-    ax.set_xscale("log")
-    ax.set_xlabel("fragment mass m (kg per m of length)")
-    ax.set_ylabel("fragments of mass >= m")
-    ax.set_title("cumulative fragment-mass distribution", fontsize=9)
-    ax.legend(fontsize=6)
+    sf.plot_mass_distribution(axes[1], rows, regs, lambda r: f"{labels[r['regularization']]}: {r['cells']} cells, seed {r['seed']}", fade=0.1)
     fig.savefig(png, dpi=120, bbox_inches="tight")
 
 
