@@ -17,48 +17,52 @@
 namespace burst {
 
 
+template <int N>
+static void CellExchange(IceSolver &ice, PetscScalar *a)
+{
+  const PetscInt S = ice.stride, dim = ice.dim;
+  PetscReal      beta[kIceMaxMaterials][kIceMaxMaterials], q[kIceMaxMaterials];
+  ExchangeMatrix<N> E;
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        PetscScalar *c = a + ice.LocalIndex(i, j, k) * S;
+        for (PetscInt m = 0; m < N; ++m)
+          for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_K[l][m] * c[ice.Offset(m, icef::spvol)];
+        E.Factor(beta);
+        PetscReal dissipated = 0; // drag turns kinetic energy into heat
+        for (PetscInt d = 0; d < dim; ++d) {
+          for (PetscInt m = 0; m < N; ++m) {
+            q[m] = c[ice.Offset(m, icef::vel_L + d)];
+            dissipated += 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
+          }
+          E.Apply(beta, q);
+          for (PetscInt m = 0; m < N; ++m) {
+            dissipated -= 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
+            c[ice.Offset(m, icef::vel_L + d)] = q[m];
+          }
+        }
+        if (ice.conservative_energy && ice.drag_heating) { // to every material alike: one temperature rise
+          PetscReal heat_capacity = 0;
+          for (PetscInt m = 0; m < N; ++m) heat_capacity += c[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv;
+          for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] += PetscMax(dissipated, 0.0) / heat_capacity;
+        }
+        for (PetscInt m = 0; m < N; ++m)
+          for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
+        E.Factor(beta);
+        for (PetscInt m = 0; m < N; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
+        E.Apply(beta, q);
+        for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
+      }
+}
+
 PetscErrorCode IceCellExchange(IceSolver &ice)
 {
-  PetscScalar   *a;
-  const PetscInt S = ice.stride, n = ice.nmat, dim = ice.dim;
+  PetscScalar *a;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_exchange, 0, 0, 0, 0));
   PetscCall(IceGetLocalArray(ice, &a));
-  if (n > 1) {
-    PetscReal      beta[kIceMaxMaterials][kIceMaxMaterials], q[kIceMaxMaterials];
-    ExchangeMatrix E{n, {}};
-    for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
-      for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
-        for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
-          PetscScalar *c = a + ice.LocalIndex(i, j, k) * S;
-          for (PetscInt m = 0; m < n; ++m)
-            for (PetscInt l = 0; l < n; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_K[l][m] * c[ice.Offset(m, icef::spvol)];
-          E.Factor(beta);
-          PetscReal dissipated = 0; // drag turns kinetic energy into heat
-          for (PetscInt d = 0; d < dim; ++d) {
-            for (PetscInt m = 0; m < n; ++m) {
-              q[m] = c[ice.Offset(m, icef::vel_L + d)];
-              dissipated += 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
-            }
-            E.Apply(beta, q);
-            for (PetscInt m = 0; m < n; ++m) {
-              dissipated -= 0.5 * c[ice.Offset(m, icef::rho_L)] * q[m] * q[m];
-              c[ice.Offset(m, icef::vel_L + d)] = q[m];
-            }
-          }
-          if (ice.conservative_energy && ice.drag_heating) { // to every material alike: one temperature rise
-            PetscReal heat_capacity = 0;
-            for (PetscInt m = 0; m < n; ++m) heat_capacity += c[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv;
-            for (PetscInt m = 0; m < n; ++m) c[ice.Offset(m, icef::temp_L)] += PetscMax(dissipated, 0.0) / heat_capacity;
-          }
-          for (PetscInt m = 0; m < n; ++m)
-            for (PetscInt l = 0; l < n; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
-          E.Factor(beta);
-          for (PetscInt m = 0; m < n; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
-          E.Apply(beta, q);
-          for (PetscInt m = 0; m < n; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
-        }
-  }
+  if (ice.nmat > 1) DispatchMaterials(ice.nmat, [&](auto N) { CellExchange<N()>(ice, a); });
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(IceUpdateGhosts(ice));
   PetscCall(PetscLogEventEnd(ice.ev_exchange, 0, 0, 0, 0));

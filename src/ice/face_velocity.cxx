@@ -12,25 +12,31 @@
 
 namespace burst {
 
-void IceFaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx)
+template <int N>
+static void FaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx)
 {
-  const PetscInt n = ice.nmat, S = ice.stride;
-  PetscReal     *u = &ice.face_vel[d][idx * n], *ustar = &ice.face_vel_star[d][idx * n];
-  PetscReal     *vbar = &ice.face_spvol[d][idx * n], *veff = &ice.face_spvol_eff[d][idx * n];
-  if (n == 1) {
-    u[0]    = ustar[0];
-    veff[0] = vbar[0];
-    return;
-  }
+  const PetscInt S = ice.stride;
+  PetscReal     *u = &ice.face_vel[d][idx * N], *ustar = &ice.face_vel_star[d][idx * N];
+  PetscReal     *vbar = &ice.face_spvol[d][idx * N], *veff = &ice.face_spvol_eff[d][idx * N];
   const PetscScalar *cL = a + (idx - ice.lstride[d]) * S, *cR = a + idx * S;
   PetscReal          beta[kIceMaxMaterials][kIceMaxMaterials];
-  for (PetscInt m = 0; m < n; ++m)
-    for (PetscInt k = 0; k < n; ++k) beta[m][k] = k == m ? 0 : ice.dt * 0.5 * (cL[ice.Offset(k, icef::theta)] + cR[ice.Offset(k, icef::theta)]) * ice.exchange_K[m][k] * vbar[m];
-  ExchangeMatrix E{n, {}};
+  for (PetscInt m = 0; m < N; ++m)
+    for (PetscInt k = 0; k < N; ++k) beta[m][k] = k == m ? 0 : ice.dt * 0.5 * (cL[ice.Offset(k, icef::theta)] + cR[ice.Offset(k, icef::theta)]) * ice.exchange_K[m][k] * vbar[m];
+  ExchangeMatrix<N> E;
   E.Factor(beta);
-  for (PetscInt m = 0; m < n; ++m) u[m] = ustar[m];
+  for (PetscInt m = 0; m < N; ++m) u[m] = ustar[m];
   E.Apply(beta, u);
   if (ice.pressure_solver == IcePressureSolver::SemiImplicit) E.Solve(vbar, veff); // the matrix's effective v
+}
+
+void IceFaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx)
+{
+  if (ice.nmat == 1) {
+    ice.face_vel[d][idx]       = ice.face_vel_star[d][idx];
+    ice.face_spvol_eff[d][idx] = ice.face_spvol[d][idx];
+    return;
+  }
+  DispatchMaterials(ice.nmat, [&](auto N) { FaceExchange<N()>(ice, a, d, idx); });
 }
 
 PetscErrorCode IceFaceVelocities(IceSolver &ice)
