@@ -31,7 +31,7 @@ void DonorBox(const IceSolver &ice, PetscInt lo[3], PetscInt hi[3])
 }
 
 // Limited gradient of value(idx) at every donor cell, into grad[3 idx + d].
-template <class Value>
+template <int DIM, class Value>
 void LimitedGradient(const IceSolver &ice, Value value, PetscReal *grad)
 {
   PetscInt lo[3], hi[3];
@@ -42,7 +42,7 @@ void LimitedGradient(const IceSolver &ice, Value value, PetscReal *grad)
         const PetscInt  idx = ice.LocalIndex(i, j, k);
         const PetscReal q   = value(idx);
         PetscReal       qmax = q, qmin = q, g[3] = {0, 0, 0}, reach = 0;
-        for (PetscInt d = 0; d < ice.dim; ++d) {
+        for (PetscInt d = 0; d < DIM; ++d) {
           const PetscReal qm = value(idx - ice.lstride[d]), qp = value(idx + ice.lstride[d]);
           g[d]               = (qp - qm) / (2 * ice.h[d]);
           qmax               = PetscMax(qmax, PetscMax(qm, qp));
@@ -60,19 +60,19 @@ void LimitedGradient(const IceSolver &ice, Value value, PetscReal *grad)
 // limited so that this value stays within the face neighbours' bounds at every vertex, rho_v being
 // the (already limited) density reconstruction there; without the density ratio a steep density
 // drop (a trace material beside its own interface) lets q overshoot by the ratio and turn negative.
-template <class Value>
+template <int DIM, class Value>
 void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, const PetscScalar *a, const PetscReal *grad_rho, PetscReal *grad)
 {
   PetscInt lo[3], hi[3];
   DonorBox(ice, lo, hi);
-  const PetscInt nvert = ice.dim == 3 ? 8 : 4;
+  constexpr PetscInt nvert = DIM == 3 ? 8 : 4;
   for (PetscInt k = lo[2]; k < hi[2]; ++k)
     for (PetscInt j = lo[1]; j < hi[1]; ++j)
       for (PetscInt i = lo[0]; i < hi[0]; ++i) {
         const PetscInt  idx = ice.LocalIndex(i, j, k);
         const PetscReal q = value(idx), rho = a[idx * ice.stride + density];
         PetscReal       qmax = q, qmin = q, g[3] = {0, 0, 0};
-        for (PetscInt d = 0; d < ice.dim; ++d) {
+        for (PetscInt d = 0; d < DIM; ++d) {
           const PetscReal qm = value(idx - ice.lstride[d]), qp = value(idx + ice.lstride[d]);
           g[d]               = (qp - qm) / (2 * ice.h[d]);
           qmax               = PetscMax(qmax, PetscMax(qm, qp));
@@ -81,7 +81,7 @@ void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, con
         PetscReal alpha = 1;
         for (PetscInt v = 0; v < nvert; ++v) {
           PetscReal dq = 0, drho = 0;
-          for (PetscInt d = 0; d < ice.dim; ++d) {
+          for (PetscInt d = 0; d < DIM; ++d) {
             const PetscReal r = ((v >> d) & 1 ? 0.5 : -0.5) * ice.h[d];
             dq += g[d] * r;
             drho += grad_rho[3 * idx + d] * r;
@@ -95,11 +95,13 @@ void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, con
       }
 }
 
-} // namespace
-
-void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[])
+// The dimension and the number of advected quantities are compile-time constants so that the
+// per-face loops over them unroll (IceAdvectionIncrement dispatches).
+template <int DIM, int NQ>
+void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscReal *const out[])
 {
-  const PetscInt  S = ice.stride, n = ice.nmat, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
+  constexpr PetscInt nq = NQ;
+  const PetscInt     S = ice.stride, n = ice.nmat, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   const bool      second = ice.advection_order == 2;
   const PetscReal dt     = ice.dt;
   ice.work_grad.resize((size_t)nlocal * 3 * (nq + 1));
@@ -108,11 +110,11 @@ void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, Pet
   auto       grad_q   = [&](PetscInt q) { return ice.work_grad.data() + (size_t)nlocal * 3 * (q + 1); };
   // Gradients: density, then q (compatible) or density * q
   if (second) {
-    LimitedGradient(ice, [&](PetscInt idx) { return a[idx * S + density]; }, grad_rho);
+    LimitedGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + density]; }, grad_rho);
     for (PetscInt q = 0; q < nq; ++q) {
       const PetscInt f = q_fields[q];
-      if (ice.compatible_fluxes) CompatibleGradient(ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
-      else LimitedGradient(ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
+      if (ice.compatible_fluxes) CompatibleGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
+      else LimitedGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
     }
   }
   // Out-flux distance of face (d, side) of cell idx for material m
@@ -130,7 +132,7 @@ void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, Pet
       return;
     }
     PetscReal r[3] = {0, 0, 0};
-    for (PetscInt e = 0; e < ice.dim; ++e) {
+    for (PetscInt e = 0; e < DIM; ++e) {
       if (e == d) r[e] = side * (0.5 * ice.h[e] - 0.5 * out_distance(idx, e, side));
       else r[e] = 0.5 * (out_distance(idx, e, -1) - out_distance(idx, e, +1));
     }
@@ -151,8 +153,8 @@ void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, Pet
         const PetscInt idx = ice.LocalIndex(i, j, k);
         for (PetscInt q = 0; q <= nq; ++q) acc[(size_t)q * nlocal + idx] = 0;
       }
-  PetscReal values[kIceMaxMaterials + 8];
-  for (PetscInt d = 0; d < ice.dim; ++d) {
+  PetscReal values[NQ + 1];
+  for (PetscInt d = 0; d < DIM; ++d) {
     const PetscReal courant = dt / ice.h[d]; // slab volume / V per unit velocity
     PetscInt        hi[3]   = {ice.xs[0] + ice.xm[0], ice.xs[1] + ice.xm[1], ice.xs[2] + ice.xm[2]};
     hi[d] += 1; // the upper face of the last owned cell
@@ -182,6 +184,24 @@ void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, Pet
         const PetscInt idx = ice.LocalIndex(i, j, k);
         for (PetscInt q = 0; q <= nq; ++q) out[q][idx] = acc[(size_t)q * nlocal + idx];
       }
+}
+
+template <int DIM>
+void AdvectionIncrementDim(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[])
+{
+  switch (nq) { // the volume alone; velocity and energy; with the dual-energy temperature
+  case 0: AdvectionIncrement<DIM, 0>(ice, a, m, density, q_fields, out); break;
+  case DIM + 1: AdvectionIncrement<DIM, DIM + 1>(ice, a, m, density, q_fields, out); break;
+  case DIM + 2: AdvectionIncrement<DIM, DIM + 2>(ice, a, m, density, q_fields, out); break;
+  default: PetscCheckAbort(false, PETSC_COMM_SELF, PETSC_ERR_PLIB, "advection of %" PetscInt_FMT " quantities is not instantiated", nq);
+  }
+}
+} // namespace
+
+void IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[])
+{
+  if (ice.dim == 2) AdvectionIncrementDim<2>(ice, a, m, density, q_fields, nq, out);
+  else AdvectionIncrementDim<3>(ice, a, m, density, q_fields, nq, out);
 }
 
 PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vector<PetscReal> &out)
