@@ -111,6 +111,14 @@ def plot(rows, args, png):
     fig.savefig(png, dpi=120, bbox_inches="tight")
 
 
+def write_table(path, rows, fields):
+    """The study's CSV, rewritten whole."""
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=fields)
+        w.writeheader()
+        w.writerows(rows)
+
+
 def plot_mass_distribution(ax, rows, regs, label, fade):
     """Cumulative fragment-mass distribution of every run, one colour per regularisation."""
     for i, reg in enumerate(regs):
@@ -160,10 +168,7 @@ def main():
                     continue
                 row = run(args, reg, c, k)
                 rows.append(row)
-                with open(table, "w", newline="") as f:
-                    w = csv.DictWriter(f, fieldnames=FIELDS)
-                    w.writeheader()
-                    w.writerows(rows)
+                write_table(table, rows, FIELDS)  # after every run: an interrupted study keeps what it has
                 print(f"{reg:10s} {c:4d} cells, {k} per cell: {row['fragments']:3d} fragments, Grady {row['grady_shear']:.2f}-{row['grady_tension']:.2f}, "
                       f"V {row['fracture_velocity']:.0f} m/s, failure energy {row['failure_energy_J_per_m']:.3g} J/m, intact {row['intact_mass_fraction']:.3f}, "
                       f"energy error {row['energy_balance_error']:.1e}, {row['wall_time_s']:.0f} s", flush=True)

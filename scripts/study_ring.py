@@ -96,10 +96,7 @@ def main():
                     continue
                 row = dict(seed=seed, **sf.run(args, reg, c, 2, extra=[f"-{args.material}_random_seed", seed]))
                 rows.append({k: str(v) for k, v in row.items()})
-                with open(table, "w", newline="") as f:
-                    w = csv.DictWriter(f, fieldnames=FIELDS)
-                    w.writeheader()
-                    w.writerows(rows)
+                sf.write_table(table, rows, FIELDS)
                 print(f"{reg:10s} {c:4d} cells, seed {seed}: {row['fragments']:3d} fragments, Grady {row['grady_shear']:.2f}-{row['grady_tension']:.2f}, "
                       f"V {row['fracture_velocity']:.0f} m/s, failure energy {row['failure_energy_J_per_m']:.3g} J/m, intact {row['intact_mass_fraction']:.3f}, "
                       f"{row['wall_time_s']:.0f} s", flush=True)
