@@ -576,11 +576,13 @@ public:
         const PetscInt q = c.index[k];
         int            bits = 0;
         if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
-        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
-        PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
-        if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
-        else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
-        if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
+        if (failure_criteria & FailTepla) { // (only the criteria asked for are evaluated: two divisions per point)
+          const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
+          PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+          if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
+          else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
+          if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
+        }
         if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
         if (c.unstable[k]) bits |= FailStability;
         if (c.flow_stress[k] <= 0) bits |= FailStrength;

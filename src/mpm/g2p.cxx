@@ -100,6 +100,25 @@ struct G2PKernel {
     for (PetscInt p = 0; p < n; ++p) {
       const Stencil<DIM, S> &st = stencils[p];
       if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      if (material && material[p] == sim.rigid_material) {
+        // A rigid particle moves with the body's prescribed velocity (its field's nodal velocity):
+        // no gather; L = 0 and F, V stay as they are.
+        const PetscReal *v_r = sim.rigid_velocity;
+        if (what.velocity) {
+          PetscReal *vp = v + DIM * p;
+          for (int a = 0; a < DIM; ++a) {
+            work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_r[a]);
+            vp[a] = v_r[a];
+          }
+          if constexpr (APIC)
+            for (int a = 0; a < 9; ++a) affine[9 * p + a] = 0;
+        }
+        if (what.position)
+          for (int a = 0; a < DIM; ++a) x[DIM * p + a] += dt * v_r[a];
+        if (what.kinematics)
+          for (int a = 0; a < 9; ++a) L[9 * p + a] = 0;
+        continue;
+      }
       PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
       const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields

@@ -99,6 +99,9 @@ struct P2GKernel {
         fe[a] = fext[DIM * p + a];
         for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
       }
+      // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
+      // momentum only (its mass gives the contact normals)
+      const bool force_p = !(material && material[p] == sim.rigid_material);
       PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
       if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
       (void)hoop;
@@ -122,7 +125,7 @@ struct P2GKernel {
         } else if constexpr (do_mom)
           for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
         if constexpr (do_force)
-          for (int a = 0; a < DIM; ++a) {
+          for (int a = 0; a < DIM && force_p; ++a) {
             PetscReal div = 0;
             for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
             div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
@@ -153,7 +156,6 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
   // Zero only the requested dofs of the global vector; the others keep their values and receive
   // zeros from the local vector.
   PetscCall(VecGetLocalSize(g.nodal, &nlocal));
-  PetscCall(VecGetArray(g.nodal, &nodal));
   const PetscInt stride = g.NodeStride();
   PetscInt       zero[3 * (1 + 3 * 3)], nzero = 0; // the requested dofs of one node, every field
   PetscCheck(g.num_velocity_fields <= 3, sim.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
@@ -168,11 +170,15 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
       if (what.force) zero[nzero++] = base + 1 + dim + a;
     }
   }
-  for (PetscInt node = 0; node < nlocal / dof; ++node) {
-    PetscScalar *nd = nodal + node * dof;
-    for (PetscInt z = 0; z < nzero; ++z) nd[zero[z]] = 0;
+  if (nzero == dof) PetscCall(VecZeroEntries(g.nodal)); // every dof requested: one memset
+  else {
+    PetscCall(VecGetArray(g.nodal, &nodal));
+    for (PetscInt node = 0; node < nlocal / dof; ++node) {
+      PetscScalar *nd = nodal + node * dof;
+      for (PetscInt z = 0; z < nzero; ++z) nd[zero[z]] = 0;
+    }
+    PetscCall(VecRestoreArray(g.nodal, &nodal));
   }
-  PetscCall(VecRestoreArray(g.nodal, &nodal));
   PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
