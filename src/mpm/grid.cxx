@@ -27,7 +27,10 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   Grid &g = sim.grid;
   PetscFunctionBeginUser;
   const PetscInt width = ShapeGhostWidth(sim.shape);
-  const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
+  // No ghost nodes outside the domain: every support stays inside [0, M-1] (shape.hpp moves the
+  // weight of a node beyond a wall onto the inside nodes), so on one rank the local vectors are the
+  // global ones and P2G sums straight into them.
+  const DMBoundaryType bt = DM_BOUNDARY_NONE;
   const PetscInt procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
   const PetscInt *l[3] = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
   if (g.dim == 2) {

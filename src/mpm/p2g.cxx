@@ -1,5 +1,6 @@
 // Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
-// into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
+// into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2); on a
+// rank without ghost nodes (one rank) straight into the global vector.
 //
 // Axisymmetric (-axisymmetric; x = r, y = z, masses and volumes per radian): the weak form of
 // div sigma in cylindrical coordinates adds the hoop term to the radial force,
@@ -142,22 +143,15 @@ struct P2GKernel {
 
 PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
 {
-  Grid        &g = sim.grid;
-  PetscScalar *nodal;
-  PetscInt     nlocal;
-  const PetscInt dof = g.num_velocity_fields * g.NodeStride(), dim = g.dim;
+  Grid          &g = sim.grid;
+  PetscScalar   *nodal;
+  PetscInt       nlocal, nghosted;
+  const PetscInt dof = g.num_velocity_fields * g.NodeStride(), dim = g.dim, stride = g.NodeStride();
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_p2g, 0, 0, 0, 0));
-  PetscCall(VecZeroEntries(g.nodal_local));
-  PetscCall(VecGetArray(g.nodal_local, &nodal));
-  P2GKernel kernel{sim, what, nodal};
-  PetscCall(DispatchShape(dim, sim.shape, kernel));
-  PetscCall(VecRestoreArray(g.nodal_local, &nodal));
-  // Zero only the requested dofs of the global vector; the others keep their values and receive
-  // zeros from the local vector.
-  PetscCall(VecGetLocalSize(g.nodal, &nlocal));
-  const PetscInt stride = g.NodeStride();
-  PetscInt       zero[3 * (1 + 3 * 3)], nzero = 0; // the requested dofs of one node, every field
+  // The requested dofs of one node, every field: zeroed in the global vector, whose other dofs keep
+  // their values.
+  PetscInt zero[3 * (1 + 3 * 3)], nzero = 0;
   PetscCheck(g.num_velocity_fields <= 3, sim.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
   for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
     const PetscInt base = vf * stride;
@@ -170,6 +164,8 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
       if (what.force) zero[nzero++] = base + 1 + dim + a;
     }
   }
+  PetscCall(VecGetLocalSize(g.nodal, &nlocal));
+  PetscCall(VecGetLocalSize(g.nodal_local, &nghosted));
   if (nzero == dof) PetscCall(VecZeroEntries(g.nodal)); // every dof requested: one memset
   else {
     PetscCall(VecGetArray(g.nodal, &nodal));
@@ -179,7 +175,18 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
     }
     PetscCall(VecRestoreArray(g.nodal, &nodal));
   }
-  PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
+  // Without ghost nodes (one rank, no periodic face) the ghosted box is the owned box, in the same
+  // order: the particles sum straight into the global vector (no local zeroing, no LocalToGlobal;
+  // the same sums in the same order). Otherwise into the ghosted local vector, then one
+  // DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
+  const bool direct = nlocal == nghosted;
+  Vec        target = direct ? g.nodal : g.nodal_local;
+  if (!direct) PetscCall(VecZeroEntries(g.nodal_local));
+  PetscCall(VecGetArray(target, &nodal));
+  P2GKernel kernel{sim, what, nodal};
+  PetscCall(DispatchShape(dim, sim.shape, kernel));
+  PetscCall(VecRestoreArray(target, &nodal));
+  if (!direct) PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
