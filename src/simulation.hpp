@@ -213,6 +213,9 @@ struct Simulation {
 // Phases and components (one file each in src/).
 PetscErrorCode ReadRunOptions(Simulation &sim);
 PetscErrorCode CreateGrid(Simulation &sim);
+// The grid velocities [v_old, v_new] from the global vector to the ghosted local one (a no-op on a
+// rank without ghost nodes, where the two are one vector).
+PetscErrorCode GridVelocityToLocal(Grid &g);
 PetscErrorCode CreateMaterials(Simulation &sim);
 PetscErrorCode ReadLoadCurves(Simulation &sim);
 PetscErrorCode ReadGeometries(Simulation &sim);

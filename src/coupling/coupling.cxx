@@ -331,7 +331,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArray(c.inc_global, &inc));
   PetscCall(VecRestoreArrayRead(ice.local, &a));
-  PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
+  PetscCall(GridVelocityToLocal(g));
   PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
   PetscCall(PetscLogEventEnd(c.ev_increments, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

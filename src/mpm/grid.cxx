@@ -65,8 +65,27 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   PetscCall(DMCreateLocalVector(g.da_nodes, &g.nodal_local));
   PetscCall(DMCreateGlobalVector(g.da_velocity, &g.velocity));
   PetscCall(DMCreateLocalVector(g.da_velocity, &g.velocity_local));
+  {
+    // Without ghost nodes (one rank) the ghosted box is the owned box: the local velocity vector is
+    // the global one (no copy per grid update)
+    PetscInt n_owned, n_ghosted;
+    PetscCall(VecGetLocalSize(g.velocity, &n_owned));
+    PetscCall(VecGetLocalSize(g.velocity_local, &n_ghosted));
+    if (n_owned == n_ghosted) {
+      PetscCall(VecDestroy(&g.velocity_local));
+      PetscCall(PetscObjectReference((PetscObject)g.velocity));
+      g.velocity_local = g.velocity;
+    }
+  }
   PetscCall(PetscObjectSetName((PetscObject)g.nodal, "nodal"));
   PetscCall(PetscObjectSetName((PetscObject)g.velocity, "grid_velocity"));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GridVelocityToLocal(Grid &g)
+{
+  PetscFunctionBeginUser;
+  if (g.velocity_local != g.velocity) PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

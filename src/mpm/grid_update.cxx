@@ -174,7 +174,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
       }
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
-  PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
+  PetscCall(GridVelocityToLocal(g));
   PetscCall(PetscLogEventEnd(sim.ev_grid, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
