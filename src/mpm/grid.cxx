@@ -1,10 +1,10 @@
 // The Eulerian background grid: a node DMDA over a box, with the ghost width of the interpolator.
 //
 // Cells are [x_i, x_{i+1}]; a cell belongs to the rank that owns its lower node (petsc.md 3), so
-// particle owner ranks follow from the DMDA ownership ranges alone. Non-periodic directions use
-// DM_BOUNDARY_GHOSTED so the wider supports can address nodes beyond a wall; the kernels fold those
-// onto the wall node (shape.hpp). BOX stencils everywhere: STAR drops corner ghosts in
-// DMLocalToGlobal(ADD_VALUES) (petsc.md 4.4).
+// particle owner ranks follow from the DMDA ownership ranges alone. DM_BOUNDARY_NONE: the kernels fold
+// a support node beyond a wall onto the inside nodes (shape.hpp), so no node outside the domain is
+// addressed, and a rank without neighbours has no ghost nodes (its local vectors are its global
+// ones). BOX stencils everywhere: STAR drops corner ghosts in DMLocalToGlobal(ADD_VALUES) (petsc.md 4.4).
 #include "simulation.hpp"
 #include "util.hpp"
 #include "mpm/swarm_access.hpp"
