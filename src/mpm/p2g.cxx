@@ -11,6 +11,7 @@
 // Both are template switches, so the default path is the loop it always was.
 #include "grid_index.hpp"
 #include "mpm/swarm_access.hpp"
+#include <type_traits>
 
 namespace burst {
 
@@ -106,34 +107,41 @@ struct P2GKernel {
       PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
       if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
       (void)hoop;
-      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-        PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
-        if constexpr (do_mass) {
-          node[0] += N * mp;
-          if (nvf > 1)
-            for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
-        }
-        if constexpr (APIC) {
-          PetscReal dx[3] = {0, 0, 0};
-          const PetscInt I[3] = {i, j, k};
-          for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
-          const PetscReal *C = affine + 9 * p;
-          for (int a = 0; a < DIM; ++a) {
-            PetscReal va = vp[a];
-            for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
-            node[1 + a] += N * mp * va;
+      // the force as a compile-time switch per particle (a runtime test in the node loop costs the
+      // deformable particles more than the rigid ones save)
+      auto scatter = [&](auto with_force) {
+        constexpr bool do_force_p = do_force && decltype(with_force)::value;
+        ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+          PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
+          if constexpr (do_mass) {
+            node[0] += N * mp;
+            if (nvf > 1)
+              for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
           }
-        } else if constexpr (do_mom)
-          for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
-        if constexpr (do_force)
-          for (int a = 0; a < DIM && force_p; ++a) {
-            PetscReal div = 0;
-            for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
-            div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
-            node[1 + DIM + a] += -Vp * div + N * fe[a];
-          }
-        if constexpr (AXI && do_force) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
-      });
+          if constexpr (APIC) {
+            PetscReal dx[3] = {0, 0, 0};
+            const PetscInt I[3] = {i, j, k};
+            for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
+            const PetscReal *C = affine + 9 * p;
+            for (int a = 0; a < DIM; ++a) {
+              PetscReal va = vp[a];
+              for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
+              node[1 + a] += N * mp * va;
+            }
+          } else if constexpr (do_mom)
+            for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
+          if constexpr (do_force_p)
+            for (int a = 0; a < DIM; ++a) {
+              PetscReal div = 0;
+              for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
+              div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
+              node[1 + DIM + a] += -Vp * div + N * fe[a];
+            }
+          if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
+        });
+      };
+      if (force_p || !do_force) scatter(std::true_type{});
+      else scatter(std::false_type{});
     }
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
