@@ -122,13 +122,20 @@ struct G2PKernel {
       PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
       const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
+      // grad[a][0..1] as one pair of doubles per row: the same products and sums, lane by lane (the
+      // scalar form keeps 12 accumulators live in 3-D and spills)
+      typedef PetscReal Pair __attribute__((vector_size(2 * sizeof(PetscReal))));
+      Pair grad01[DIM] = {};
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
+        const Pair         d01 = {dN[0], dN[1]};
         for (int a = 0; a < DIM; ++a) {
           if constexpr (DV) dv[a] += N * (nv[DIM + a] - nv[a]);
           vnew[a] += N * nv[DIM + a];
-          if constexpr (GRAD)
-            for (int b = 0; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
+          if constexpr (GRAD) {
+            grad01[a] += nv[DIM + a] * d01;
+            for (int b = 2; b < DIM; ++b) grad[a][b] += nv[DIM + a] * dN[b];
+          }
         }
         if constexpr (XPIC) {
           const PetscScalar *sv = star + index(i, j, k) * vdof + vf * 2 * DIM;
@@ -145,6 +152,8 @@ struct G2PKernel {
             }
         }
       });
+      if constexpr (GRAD)
+        for (int a = 0; a < DIM; ++a) grad[a][0] = grad01[a][0], grad[a][1] = grad01[a][1];
       (void)B;
       (void)D;
       (void)vs;

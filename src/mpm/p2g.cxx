@@ -101,6 +101,9 @@ struct P2GKernel {
         fe[a] = fext[DIM * p + a];
         for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
       }
+      typedef PetscReal Pair __attribute__((vector_size(2 * sizeof(PetscReal))));
+      Pair s01[DIM], fe01 = {fe[0], fe[1]}; // columns of the stress rows 0 and 1: s01[b] = (s[0][b], s[1][b])
+      for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
       // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
       // momentum only (its mass gives the contact normals)
       const bool force_p = !(material && material[p] == sim.rigid_material);
@@ -130,13 +133,21 @@ struct P2GKernel {
             }
           } else if constexpr (do_mom)
             for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
-          if constexpr (do_force_p)
-            for (int a = 0; a < DIM; ++a) {
+          if constexpr (do_force_p) {
+            // rows 0 and 1 as one pair of doubles (the same operations lane by lane), the rest scalar
+            Pair div01 = {0, 0};
+            for (int b = 0; b < DIM; ++b) div01 += s01[b] * dN[b];
+            div01 -= qp * Pair{dN[0], dN[1]}; // artificial bulk viscosity: sigma - q I
+            const Pair f01 = -Vp * div01 + N * fe01;
+            node[1 + DIM] += f01[0];
+            node[2 + DIM] += f01[1];
+            for (int a = 2; a < DIM; ++a) {
               PetscReal div = 0;
               for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
-              div -= qp * dN[a]; // artificial bulk viscosity: sigma - q I
+              div -= qp * dN[a];
               node[1 + DIM + a] += -Vp * div + N * fe[a];
             }
+          }
           if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
         });
       };
