@@ -269,6 +269,17 @@ void SetHY100MTS(ScopedOptions &opt, const std::string &mat)
   opt.Set("-" + mat + "_flow_stress_type", "mts");
   opt.Family(mat, "flow_stress", {{"sigma_a", "40e6"}, {"k_over_b3", "0.905e6"}, {"sigma_i", "1341e6"}, {"g0i", "1.161"}, {"edot0i", "1e13"}, {"p_i", "0.5"}, {"q_i", "1.5"}, {"g0e", "1.6"}, {"edot0e", "1e7"}, {"p_e", "0.666666666666667"}, {"q_e", "1"}, {"a0", "6.0e9"}, {"a1", "0"}, {"a2", "0"}, {"a3", "2.0758e6"}, {"theta_IV", "200e6"}, {"alpha", "3"}, {"edot_es0", "1e7"}, {"g0es", "0.112"}, {"sigma_es0", "822e6"}});
 }
+
+// The HY-100 MTS flow model of material `mat` with the rate floor min_rate (1/s), created with the
+// reference shear modulus mu0 = 71.46 GPa.
+std::unique_ptr<FlowStress> HY100MTSFlow(ScopedOptions &opt, const std::string &mat, const char min_rate[])
+{
+  SetHY100MTS(opt, mat);
+  opt.Set("-" + mat + "_flow_stress_min_rate", min_rate);
+  MaterialConstants mc = Constants(mat, 7860, 69e9);
+  mc.shear_modulus     = 71.46e9;
+  return Create<FlowStress>(FlowStressList, mc, "flow_stress", "johnson_cook");
+}
 } // namespace
 
 TEST(MTS, Table73_HY100InitialYield)
@@ -313,11 +324,7 @@ TEST(MTS, Table73_HY100InitialYield)
 TEST(MTS, DerivativesAlongReturn)
 {
   ScopedOptions opt;
-  SetHY100MTS(opt, "mtsder");
-  opt.Set("-mtsder_flow_stress_min_rate", "1e-3");
-  MaterialConstants mc = Constants("mtsder", 7860, 69e9);
-  mc.shear_modulus     = 71.46e9;
-  auto flow            = Create<FlowStress>(FlowStressList, mc, "flow_stress", "johnson_cook");
+  auto          flow = HY100MTSFlow(opt, "mtsder", "1e-3");
   ASSERT_TRUE(flow);
   ReturnSettings settings;
   settings.tolerance = 1e-14;
@@ -365,11 +372,7 @@ TEST(MTS, DerivativesAlongReturn)
 TEST(MTS, HistoryChangesOnlyWithPlasticStrain)
 {
   ScopedOptions opt;
-  SetHY100MTS(opt, "mtshist");
-  opt.Set("-mtshist_flow_stress_min_rate", "3");
-  MaterialConstants mc = Constants("mtshist", 7860, 69e9);
-  mc.shear_modulus     = 71.46e9;
-  auto flow            = Create<FlowStress>(FlowStressList, mc, "flow_stress", "johnson_cook");
+  auto          flow = HY100MTSFlow(opt, "mtshist", "3");
   ASSERT_TRUE(flow);
   const double T = 622, mu = 71.46e9 - 2.9e9 / (std::exp(204.0 / T) - 1), h = 450e6;
   Chunk        c = OnePoint(T, 2000, mu, 7860);
