@@ -124,7 +124,6 @@ struct G2PKernel {
       const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       // grad[a][0..1] as one pair of doubles per row: the same products and sums, lane by lane (the
       // scalar form keeps 12 accumulators live in 3-D and spills)
-      typedef PetscReal Pair __attribute__((vector_size(2 * sizeof(PetscReal))));
       Pair grad01[DIM] = {};
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;

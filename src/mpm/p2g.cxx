@@ -101,7 +101,6 @@ struct P2GKernel {
         fe[a] = fext[DIM * p + a];
         for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
       }
-      typedef PetscReal Pair __attribute__((vector_size(2 * sizeof(PetscReal))));
       Pair s01[DIM], fe01 = {fe[0], fe[1]}; // columns of the stress rows 0 and 1: s01[b] = (s[0][b], s[1][b])
       for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
       // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
