@@ -227,6 +227,7 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim);
 PetscErrorCode ComputeTimeStep(Simulation &sim);
 PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim);
 PetscErrorCode ComputeExternalForces(Simulation &sim);
+bool           HasExternalForces(const Simulation &sim); // gravity, a body force or a load curve: external_force may be nonzero
 
 struct P2GRequest { PetscBool mass, momentum, force; };
 PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what);
@@ -244,7 +245,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed);
 // Removes the local particles flagged in `remove` (their mass and energy go to the diagnostics);
 // *removed is the global count.
 PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed);
-PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside);
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells = true);
 
 PetscErrorCode TakeStep(Simulation &sim);
 

@@ -79,7 +79,7 @@ struct G2PKernel {
     PetscReal           *x, *v, *L, *F, *vol, *affine = nullptr;
     const PetscReal     *hw, *fext, *vol0;
     const PetscInt      *failed = nullptr, *material = nullptr;
-    const bool           exponential = sim.f_update == FUpdate::Exponential;
+    const bool           exponential = sim.f_update == FUpdate::Exponential, external = HasExternalForces(sim);
     PetscReal            work = 0;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
@@ -107,7 +107,7 @@ struct G2PKernel {
         if (what.velocity) {
           PetscReal *vp = v + DIM * p;
           for (int a = 0; a < DIM; ++a) {
-            work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_r[a]);
+            if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_r[a]);
             vp[a] = v_r[a];
           }
           if constexpr (APIC)
@@ -179,7 +179,7 @@ struct G2PKernel {
         for (int a = 0; a < DIM; ++a) {
           // XPIC(m): v_p = S v* + S (v_new - v_old), v* = [I - (I - S+S)^m] v_old on the grid
           const PetscReal v_new = APIC ? vnew[a] : (XPIC ? vs[a] + dv[a] : flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a]);
-          work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
+          if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
           vp[a] = v_new;
         }
       }

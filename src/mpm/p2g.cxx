@@ -87,72 +87,81 @@ struct P2GKernel {
     bool             fill;
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     constexpr bool   do_mass = MASS, do_mom = MOM, do_force = FORCE;
-    for (PetscInt p = 0; p < n; ++p) {
-      Stencil<DIM, S> &st = stencils[p];
-      if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
-      const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
-      const PetscReal *xp = x + DIM * p;
-      // The particle's values in locals: the node array's stores cannot alias them, so the scatter
-      // below reads them from registers (same operations, same order).
-      PetscReal vp[DIM], s[DIM][DIM], fe[DIM];
-      for (int a = 0; a < DIM; ++a) {
-        vp[a] = v[DIM * p + a];
-        fe[a] = fext[DIM * p + a];
-        for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
+    // external forces as a compile-time switch for the whole loop: without loads (most scenes) the
+    // force is the internal one alone
+    auto particles = [&](auto external) {
+      constexpr bool do_external = do_force && decltype(external)::value;
+      for (PetscInt p = 0; p < n; ++p) {
+        Stencil<DIM, S> &st = stencils[p];
+        if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+        const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
+        const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
+        const PetscReal *xp = x + DIM * p;
+        // The particle's values in locals: the node array's stores cannot alias them, so the scatter
+        // below reads them from registers (same operations, same order).
+        PetscReal vp[DIM], s[DIM][DIM], fe[DIM] = {};
+        for (int a = 0; a < DIM; ++a) {
+          vp[a] = v[DIM * p + a];
+          if constexpr (do_external) fe[a] = fext[DIM * p + a];
+          for (int b = 0; b < DIM; ++b) s[a][b] = sigma[9 * p + 3 * a + b];
+        }
+        Pair s01[DIM], fe01 = {fe[0], fe[1]}; // columns of the stress rows 0 and 1: s01[b] = (s[0][b], s[1][b])
+        for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
+        // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
+        // momentum only (its mass gives the contact normals)
+        const bool force_p = !(material && material[p] == sim.rigid_material);
+        PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
+        if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
+        (void)hoop;
+        // the force as a compile-time switch per particle (a runtime test in the node loop costs the
+        // deformable particles more than the rigid ones save)
+        auto scatter = [&](auto with_force) {
+          constexpr bool do_force_p = do_force && decltype(with_force)::value;
+          ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+            PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
+            if constexpr (do_mass) {
+              node[0] += N * mp;
+              if (nvf > 1)
+                for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
+            }
+            if constexpr (APIC) {
+              PetscReal dx[3] = {0, 0, 0};
+              const PetscInt I[3] = {i, j, k};
+              for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
+              const PetscReal *C = affine + 9 * p;
+              for (int a = 0; a < DIM; ++a) {
+                PetscReal va = vp[a];
+                for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
+                node[1 + a] += N * mp * va;
+              }
+            } else if constexpr (do_mom)
+              for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
+            if constexpr (do_force_p) {
+              // rows 0 and 1 as one pair of doubles (the same operations lane by lane), the rest scalar
+              Pair div01 = {0, 0};
+              for (int b = 0; b < DIM; ++b) div01 += s01[b] * dN[b];
+              div01 -= qp * Pair{dN[0], dN[1]}; // artificial bulk viscosity: sigma - q I
+              Pair f01 = -Vp * div01;
+              if constexpr (do_external) f01 += N * fe01;
+              node[1 + DIM] += f01[0];
+              node[2 + DIM] += f01[1];
+              for (int a = 2; a < DIM; ++a) {
+                PetscReal div = 0;
+                for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
+                div -= qp * dN[a];
+                if constexpr (do_external) node[1 + DIM + a] += -Vp * div + N * fe[a];
+                else node[1 + DIM + a] += -Vp * div;
+              }
+            }
+            if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
+          });
+        };
+        if (force_p || !do_force) scatter(std::true_type{});
+        else scatter(std::false_type{});
       }
-      Pair s01[DIM], fe01 = {fe[0], fe[1]}; // columns of the stress rows 0 and 1: s01[b] = (s[0][b], s[1][b])
-      for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
-      // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
-      // momentum only (its mass gives the contact normals)
-      const bool force_p = !(material && material[p] == sim.rigid_material);
-      PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
-      if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
-      (void)hoop;
-      // the force as a compile-time switch per particle (a runtime test in the node loop costs the
-      // deformable particles more than the rigid ones save)
-      auto scatter = [&](auto with_force) {
-        constexpr bool do_force_p = do_force && decltype(with_force)::value;
-        ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-          PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
-          if constexpr (do_mass) {
-            node[0] += N * mp;
-            if (nvf > 1)
-              for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
-          }
-          if constexpr (APIC) {
-            PetscReal dx[3] = {0, 0, 0};
-            const PetscInt I[3] = {i, j, k};
-            for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
-            const PetscReal *C = affine + 9 * p;
-            for (int a = 0; a < DIM; ++a) {
-              PetscReal va = vp[a];
-              for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
-              node[1 + a] += N * mp * va;
-            }
-          } else if constexpr (do_mom)
-            for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
-          if constexpr (do_force_p) {
-            // rows 0 and 1 as one pair of doubles (the same operations lane by lane), the rest scalar
-            Pair div01 = {0, 0};
-            for (int b = 0; b < DIM; ++b) div01 += s01[b] * dN[b];
-            div01 -= qp * Pair{dN[0], dN[1]}; // artificial bulk viscosity: sigma - q I
-            const Pair f01 = -Vp * div01 + N * fe01;
-            node[1 + DIM] += f01[0];
-            node[2 + DIM] += f01[1];
-            for (int a = 2; a < DIM; ++a) {
-              PetscReal div = 0;
-              for (int b = 0; b < DIM; ++b) div += s[a][b] * dN[b];
-              div -= qp * dN[a];
-              node[1 + DIM + a] += -Vp * div + N * fe[a];
-            }
-          }
-          if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
-        });
-      };
-      if (force_p || !do_force) scatter(std::true_type{});
-      else scatter(std::false_type{});
-    }
+    };
+    if (HasExternalForces(sim)) particles(std::true_type{});
+    else particles(std::false_type{});
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }

@@ -72,8 +72,9 @@ static inline PetscInt FindSlot(const std::vector<PetscInt> &start, PetscInt i)
 }
 
 // Writes the owner rank (DMSwarm_rank) and local cell id of every particle. Particles outside the
-// domain get rank -1 and are counted in num_outside.
-PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
+// domain get rank -1 and are counted in num_outside. On one rank, when the caller needs no cell ids
+// (no sort this step), only the inside test runs: every rank is 0 and the cell ids keep older values.
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells)
 {
   const Grid &g = sim.grid;
   PetscInt    n, outside = 0;
@@ -90,6 +91,20 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside)
   const PetscInt  dim = g.dim, cells[3] = {g.cells[0], g.cells[1], g.cells[2]}, procs[2] = {g.procs[0], g.procs[1]};
   const PetscReal lower[3] = {g.lower[0], g.lower[1], g.lower[2]}, upper[3] = {g.upper[0], g.upper[1], g.upper[2]}, h[3] = {g.h[0], g.h[1], g.h[2]};
   const bool      one_slot[3] = {g.start[0].size() <= 2, g.start[1].size() <= 2, dim < 3 || g.start[2].size() <= 2};
+  if (sim.size == 1 && !need_cells) {
+    for (PetscInt p = 0; p < n; ++p) {
+      bool inside = true;
+      for (PetscInt d = 0; d < dim; ++d) {
+        const PetscReal xd = x[p * dim + d];
+        inside             = inside && xd >= lower[d] && xd <= upper[d]; // false for NaN
+      }
+      rank[p] = inside ? 0 : -1;
+      outside += !inside;
+    }
+    PetscCall(fields.RestoreAll());
+    *num_outside = outside;
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   for (PetscInt p = 0; p < n; ++p) {
     PetscInt slot[3] = {0, 0, 0}, c[3] = {0, 0, 0};
     bool     inside  = true;
@@ -164,12 +179,14 @@ PetscErrorCode MigrateParticles(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
   sim.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
-  PetscCall(ComputeOwnerRanks(sim, &outside));
-  if (sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0))) {
+  const bool sort    = sim.sort_interval > 0 && (sim.step + 1) % sim.sort_interval == 0;
+  const bool balance = sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0));
+  PetscCall(ComputeOwnerRanks(sim, &outside, sort || balance));
+  if (balance) {
     PetscBool changed;
     PetscCall(BalanceGrid(sim, &changed)); // new ownership ranges from the particle work (grid.cxx)
     sim.grid.balanced_at = sim.step;
-    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside));
+    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside, true));
   }
   local = outside;
   PetscCallMPI(MPI_Allreduce(&local, &global_outside, 1, MPIU_INT64, MPI_SUM, sim.comm));
@@ -205,13 +222,13 @@ PetscErrorCode MigrateParticles(Simulation &sim)
     }
     PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", sim.step, sim.diag.removed_particles - (PetscInt)removed_before));
   }
-  PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE));
+  if (sim.size > 1) PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE)); // one rank: every particle stays
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   local = n;
   PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
   PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
   PetscCall(PetscLogEventEnd(sim.ev_migrate, 0, 0, 0, 0));
-  if (sim.sort_interval > 0 && (sim.step + 1) % sim.sort_interval == 0) PetscCall(SortParticlesByCell(sim));
+  if (sort) PetscCall(SortParticlesByCell(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

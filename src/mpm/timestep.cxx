@@ -47,6 +47,15 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// Whether any particle can carry an external force: without a load the field stays zero (seeding
+// zeroes it), and the transfers leave its terms out.
+bool HasExternalForces(const Simulation &sim)
+{
+  const bool body    = sim.analytic && sim.analytic->HasBodyForce();
+  const bool gravity = sim.gravity[0] != 0 || sim.gravity[1] != 0 || sim.gravity[2] != 0;
+  return body || gravity || !sim.load_curves.empty();
+}
+
 // External force per particle at t_n: gravity, the body force of an analytic solution, and the
 // pressure of a load curve on surface particles, with the area vector carried by Nanson's formula
 // n da = J F^{-T} N dA.
@@ -59,10 +68,8 @@ PetscErrorCode ComputeExternalForces(Simulation &sim)
   std::vector<PetscReal> pressure(sim.load_curves.size());
   PetscFunctionBeginUser;
   for (size_t c = 0; c < sim.load_curves.size(); ++c) pressure[c] = sim.load_curves[c].Evaluate(sim.time);
+  if (!HasExternalForces(sim)) PetscFunctionReturn(PETSC_SUCCESS); // the field stays zero: skip the pass
   const bool body = sim.analytic && sim.analytic->HasBodyForce();
-  const bool gravity = sim.gravity[0] != 0 || sim.gravity[1] != 0 || sim.gravity[2] != 0;
-  // Without any load the external force stays zero (seeding zeroes it): skip the pass.
-  if (!body && !gravity && sim.load_curves.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(sim.ev_loads, 0, 0, 0, 0));
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
