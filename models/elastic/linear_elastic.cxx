@@ -31,6 +31,10 @@ public:
       if (f.material[p] != id) continue;
       const PetscReal *L     = f.L + 9 * p;
       PetscReal       *sigma = f.stress + 9 * p;
+      if (L[2] == 0 && L[5] == 0 && L[6] == 0 && L[7] == 0 && sigma[2] == 0 && sigma[5] == 0) {
+        UpdatePlane(L, sigma, f, p, dt);
+        continue;
+      }
       // Cayley form of Q for the skew A = W dt/2 with axial vector w (A x = w x x):
       // (I - A)^{-1} (I + A) = I + 2 (A + A^2) / (1 + |w|^2), exact since A^3 = -|w|^2 A,
       // with A^2 = w w^T - |w|^2 I
@@ -56,6 +60,29 @@ public:
       f.wave_speed[p] = std::sqrt(modulus * f.volume[p] / f.mass[p]); // current density m/V
     }
     return PETSC_SUCCESS;
+  }
+
+  // The same update for a point without out-of-plane shear (2-D plane strain: L and sigma have
+  // no xz, yz entries, so the spin is about z): the expressions above with their zero terms left
+  // out, in the same order (the same bits), about a third of the work.
+  void UpdatePlane(const PetscReal *L, PetscReal *sigma, const MaterialPointFields &f, PetscInt p, PetscReal dt) const
+  {
+    const PetscReal lambda = elastic.lame_lambda, mu = elastic.shear_modulus;
+    const PetscReal w = 0.25 * dt * (L[3] - L[1]), w2 = w * w, c = 2 / (1 + w2);
+    const PetscReal q00 = 1 - c * w2, q01 = -(c * w), q10 = c * w, q22 = c * w * w + (1 - c * w2);
+    const PetscReal s00 = sigma[0], s01 = sigma[1], s10 = sigma[3], s11 = sigma[4], s22 = sigma[8];
+    const PetscReal t00 = q00 * s00 + q01 * s10, t01 = q00 * s01 + q01 * s11, t10 = q10 * s00 + q00 * s10, t11 = q10 * s01 + q00 * s11;
+    const PetscReal trace_D = L[0] + L[4];
+    const PetscReal d01     = 0.5 * (L[1] + L[3]);
+    sigma[0]                = t00 * q00 + t01 * q01 + dt * (lambda * trace_D + 2 * mu * L[0]);
+    sigma[1]                = t00 * q10 + t01 * q00 + dt * (2 * mu * d01);
+    sigma[4]                = t10 * q10 + t11 * q00 + dt * (lambda * trace_D + 2 * mu * L[4]);
+    sigma[8]                = (q22 * s22) * q22 + dt * (lambda * trace_D);
+    sigma[3]                = sigma[1];
+    // StressWork with the zero terms left out
+    const PetscReal work = 0.5 * (s00 + sigma[0]) * 0.5 * (L[0] + L[0]) + 0.5 * (s01 + sigma[1]) * 0.5 * (L[1] + L[3]) + 0.5 * (s10 + sigma[3]) * 0.5 * (L[3] + L[1]) + 0.5 * (s11 + sigma[4]) * 0.5 * (L[4] + L[4]);
+    f.internal_energy[p] += work * f.volume[p] * (1.0 - 0.5 * trace_D * dt) * dt;
+    f.wave_speed[p] = std::sqrt((lambda + 2 * mu) * f.volume[p] / f.mass[p]);
   }
 
   PetscErrorCode ComputeWaveSpeed(const MaterialPointFields &f, PetscInt id) override

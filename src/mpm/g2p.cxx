@@ -191,7 +191,23 @@ struct G2PKernel {
         for (int a = 0; a < DIM; ++a)
           for (int b = 0; b < DIM; ++b) Lp[3 * a + b] = grad[a][b];
         if constexpr (AXI) Lp[8] = vnew[0] / r_old; // hoop rate v_r/r
-        Mat3Map    Fp(F + 9 * p);
+        PetscReal *Fq = F + 9 * p;
+        if constexpr (DIM == 2 && !AXI) {
+          if (!exponential && Fq[2] == 0 && Fq[5] == 0 && Fq[6] == 0 && Fq[7] == 0) {
+            // plane strain, F without out-of-plane shear: only the 2x2 block of (I + L dt) F changes
+            // and F_zz stays; the products and the determinant are Eigen's 3x3 ones below with their
+            // zero terms left out (the same bits)
+            const PetscReal i00 = 1 + Lp[0] * dt, i01 = Lp[1] * dt, i10 = Lp[3] * dt, i11 = 1 + Lp[4] * dt;
+            const PetscReal f00 = Fq[0], f01 = Fq[1], f10 = Fq[3], f11 = Fq[4];
+            Fq[0]  = i00 * f00 + i01 * f10;
+            Fq[1]  = i00 * f01 + i01 * f11;
+            Fq[3]  = i10 * f00 + i11 * f10;
+            Fq[4]  = i10 * f01 + i11 * f11;
+            vol[p] = vol0[p] * (Fq[0] * (Fq[4] * Fq[8]) - Fq[1] * (Fq[3] * Fq[8]));
+            continue;
+          }
+        }
+        Mat3Map    Fp(Fq);
         const Mat3 increment = exponential ? Expm(Mat3CMap(Lp) * dt) : Mat3(Mat3::Identity() + Mat3CMap(Lp) * dt);
         Fp                   = increment * Mat3(Fp);
         vol[p]               = vol0[p] * Fp.determinant();
