@@ -132,12 +132,18 @@ inline void BSpline2Weights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscR
   ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
 
-// Weights of one particle in all directions.
+// Weights of one particle in all directions. GIMP stencils also record, per direction, the range
+// [lo, hi] of their nodes with a nonzero weight or gradient: a GIMP particle of half-width lp reaches
+// the far node on the other side of its nearest node only when it lies within lp of that node
+// (|x_p - x_I| < h + lp), so about half the time a direction has 2 live nodes of 3 (a 3-D stencil
+// about 16 of 27). ForEachNode visits only those; the others would add exact zeros.
 template <int DIM, ShapeType S>
 struct Stencil {
-  static constexpr int NS = ShapeNodes<S>();
+  static constexpr int  NS      = ShapeNodes<S>();
+  static constexpr bool kTrimmed = S == ShapeType::UGimp || S == ShapeType::CpGimp;
   PetscInt             idx[DIM][NS];
   PetscReal            w[DIM][NS], dw[DIM][NS];
+  unsigned char        lo[DIM], hi[DIM]; // GIMP: live nodes lo..hi of each direction (else 0..NS-1)
 
   // x: particle position; lp0: initial particle half-widths; F: deformation gradient (row-major 3x3,
   // used by cpGIMP only).
@@ -151,6 +157,12 @@ struct Stencil {
         lp           = lp > 0.5 * axes[d].h ? 0.5 * axes[d].h : (lp < 1e-3 * axes[d].h ? 1e-3 * axes[d].h : lp);
         GimpWeights1D(axes[d], x[d], lp, idx[d], w[d], dw[d]);
       } else BSpline2Weights1D(axes[d], x[d], idx[d], w[d], dw[d]);
+      // the end nodes whose weight and gradient are exactly zero (GIMP beyond h + lp, or a wall node
+      // whose weight moved inside); the middle node always carries weight
+      if constexpr (kTrimmed) {
+        lo[d] = w[d][0] == 0 && dw[d][0] == 0 ? 1 : 0;
+        hi[d] = w[d][NS - 1] == 0 && dw[d][NS - 1] == 0 ? NS - 2 : NS - 1;
+      }
     }
   }
 };
@@ -193,14 +205,19 @@ struct StencilCache {
   }
 };
 
-// Visit every node of the tensor-product support: f(i, j, k, N, dN[DIM]).
+// Visit every node of the tensor-product support (GIMP: the live nodes, see Stencil), in the same
+// order: f(i, j, k, N, dN[DIM]).
 template <int DIM, ShapeType S, class Fn>
 inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
 {
-  constexpr int NS = Stencil<DIM, S>::NS;
+  using St                 = Stencil<DIM, S>;
+  constexpr int  NS        = St::NS;
+  constexpr bool trimmed   = St::kTrimmed;
+  const int      lo[3]     = {trimmed ? st.lo[0] : 0, trimmed ? st.lo[1] : 0, trimmed && DIM == 3 ? st.lo[DIM - 1] : 0};
+  const int      end[3]    = {trimmed ? st.hi[0] + 1 : NS, trimmed ? st.hi[1] + 1 : NS, trimmed && DIM == 3 ? st.hi[DIM - 1] + 1 : NS};
   if constexpr (DIM == 2) {
-    for (int b = 0; b < NS; ++b)
-      for (int a = 0; a < NS; ++a) {
+    for (int b = lo[1]; b < end[1]; ++b)
+      for (int a = lo[0]; a < end[0]; ++a) {
         const PetscReal N     = st.w[0][a] * st.w[1][b];
         const PetscReal dN[2] = {st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]};
         f(st.idx[0][a], st.idx[1][b], (PetscInt)0, N, dN);
@@ -208,15 +225,15 @@ inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
   } else {
     // the x-y products of the weights, shared by the NS planes in z (same products, same bits)
     PetscReal ww[NS][NS], dww[NS][NS], wdw[NS][NS];
-    for (int b = 0; b < NS; ++b)
-      for (int a = 0; a < NS; ++a) {
+    for (int b = lo[1]; b < end[1]; ++b)
+      for (int a = lo[0]; a < end[0]; ++a) {
         ww[b][a]  = st.w[0][a] * st.w[1][b];
         dww[b][a] = st.dw[0][a] * st.w[1][b];
         wdw[b][a] = st.w[0][a] * st.dw[1][b];
       }
-    for (int c = 0; c < NS; ++c)
-      for (int b = 0; b < NS; ++b)
-        for (int a = 0; a < NS; ++a) {
+    for (int c = lo[2]; c < end[2]; ++c)
+      for (int b = lo[1]; b < end[1]; ++b)
+        for (int a = lo[0]; a < end[0]; ++a) {
           const PetscReal N     = ww[b][a] * st.w[2][c];
           const PetscReal dN[3] = {dww[b][a] * st.w[2][c], wdw[b][a] * st.w[2][c], ww[b][a] * st.dw[2][c]};
           f(st.idx[0][a], st.idx[1][b], st.idx[2][c], N, dN);
