@@ -36,6 +36,7 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.ev_grid));
   PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.ev_g2p));
   PetscCall(PetscLogEventRegister("MPM_XPIC", id, &sim.ev_xpic));
+  PetscCall(PetscLogEventRegister("MPM_Remap", id, &sim.ev_remap));
   PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.ev_stress));
   PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
   PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));

@@ -4,7 +4,8 @@
 //   USL  (update stress last, the default; Uintah's order, Wallstedt & Guilkey 2008):
 //        P2G(m, mv, f) -> grid update + BCs -> G2P(v, x, L, F) -> stress -> migrate
 //   MUSL (modified USL, Sulsky et al. 1995): after the velocity G2P, momentum goes back to the grid
-//        and the position and L come from that remapped velocity.
+//        (both in one particle pass, RemapMomentum) and the position and L come from that remapped
+//        velocity.
 //   USF  (update stress first): P2G(m, mv) -> grid velocity -> G2P(L, F) -> stress -> P2G(f) ->
 //        grid update -> G2P(v, x)
 // ICE (a scene with gases), rows 4 and 7-17 of ice.md 1.2:
@@ -41,8 +42,7 @@ static PetscErrorCode MPMStep(Simulation &sim)
   case StepScheme::MUSL:
     PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
     PetscCall(GridUpdate(sim));
-    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
-    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(RemapMomentum(sim)); // G2P(v) and P2G(mv) in one particle pass
     PetscCall(GridVelocityFromMomentum(sim));
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
     PetscCall(UpdateStress(sim));
@@ -100,8 +100,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceCellExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
   if (sim.scheme == StepScheme::MUSL) {
-    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
-    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(RemapMomentum(sim));
     PetscCall(GridVelocityFromMomentum(sim));
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
   } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));

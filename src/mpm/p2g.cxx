@@ -9,6 +9,10 @@
 // Guilkey, IJNME 101 (2015) 127). APIC (-mpm_transfer apic) adds the affine part of the particle
 // velocity to the momentum: m_p N_I (v_p + C_p (x_I - x_p)) (Jiang et al., JCP 2017, eq. 9).
 // Both are template switches, so the default path is the loop it always was.
+//
+// MUSL's remap (RemapMomentum): the particle velocities from the grid, v_p <- a (v_p + sum N (v_new -
+// v_old)) + (1 - a) sum N v_new as in G2P, and their momentum m_p N_I v_p back onto the grid, in one
+// particle pass (the same operations as G2P's velocity pass followed by a momentum P2G).
 #include "grid_index.hpp"
 #include "mpm/swarm_access.hpp"
 #include <type_traits>
@@ -17,9 +21,11 @@ namespace burst {
 
 namespace {
 struct P2GKernel {
-  Simulation &sim;
-  P2GRequest  what;
-  PetscScalar *nodal;
+  Simulation        &sim;
+  P2GRequest         what;
+  PetscScalar       *nodal;
+  const PetscScalar *vel         = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
+  bool               fext_active = false;   // HasExternalForces
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
@@ -44,6 +50,10 @@ struct P2GKernel {
   {
     PetscFunctionBeginUser;
     const int request = (what.mass ? 1 : 0) | (what.momentum ? 2 : 0) | (what.force ? 4 : 0);
+    if (vel) { // the remap: momentum of the velocities it updates
+      PetscCall((Loop<DIM, S, AXI, false, false, true, false, true>()));
+      PetscFunctionReturn(PETSC_SUCCESS);
+    }
     switch (request) {
     case 1: PetscCall((Loop<DIM, S, AXI, APIC, true, false, false>())); break;
     case 2: PetscCall((Loop<DIM, S, AXI, APIC, false, true, false>())); break;
@@ -57,15 +67,21 @@ struct P2GKernel {
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  template <int DIM, ShapeType S, bool AXI, bool APIC_, bool MASS, bool MOM, bool FORCE>
+  template <int DIM, ShapeType S, bool AXI, bool APIC_, bool MASS, bool MOM, bool FORCE, bool REMAP = false>
   PetscErrorCode Loop()
   {
     constexpr bool APIC = APIC_ && MOM;
+    static_assert(!REMAP || (MOM && !MASS && !FORCE && !APIC), "the remap sums momentum only");
     const Grid          &g = sim.grid;
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
-    const PetscReal     *x, *v, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr, *affine = nullptr;
+    const PetscReal     *x, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr, *affine = nullptr;
+    PetscReal           *v;
+    const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
+    const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
+    PetscReal            work = 0; // the remap: work of the external forces (as in G2P)
+    (void)vdof, (void)flip, (void)dt;
     const PetscInt      *failed = nullptr, *material = nullptr;
     const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
@@ -100,6 +116,7 @@ struct P2GKernel {
         // The particle's values in locals: the node array's stores cannot alias them, so the scatter
         // below reads them from registers (same operations, same order).
         PetscReal vp[DIM], s[DIM][DIM], fe[DIM] = {};
+        if constexpr (REMAP) RemapVelocity<DIM, S>(st, p, vf, material, index, vdof, flip, dt, fext, v, work);
         for (int a = 0; a < DIM; ++a) {
           vp[a] = v[DIM * p + a];
           if constexpr (do_external) fe[a] = fext[DIM * p + a];
@@ -162,20 +179,50 @@ struct P2GKernel {
     };
     if (HasExternalForces(sim)) particles(std::true_type{});
     else particles(std::false_type{});
+    if constexpr (REMAP) sim.diag.external_work += work;
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  // G2P's velocity update of particle p (the FLIP/PIC blend; a rigid particle takes the body's
+  // velocity), the same operations in the same order as GridToParticles' velocity pass.
+  template <int DIM, ShapeType S>
+  void RemapVelocity(const Stencil<DIM, S> &st, PetscInt p, PetscInt vf, const PetscInt *material, const LocalNodeIndex &index, PetscInt vdof, PetscReal flip, PetscReal dt, const PetscReal *fext, PetscReal *v, PetscReal &work) const
+  {
+    const bool external = fext_active;
+    PetscReal *vp       = v + DIM * p;
+    if (material && material[p] == sim.rigid_material) {
+      for (int a = 0; a < DIM; ++a) {
+        if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + sim.rigid_velocity[a]);
+        vp[a] = sim.rigid_velocity[a];
+      }
+      return;
+    }
+    PetscReal dv[DIM] = {}, vnew[DIM] = {};
+    ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) {
+      const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
+      for (int a = 0; a < DIM; ++a) {
+        dv[a] += N * (nv[DIM + a] - nv[a]);
+        vnew[a] += N * nv[DIM + a];
+      }
+    });
+    for (int a = 0; a < DIM; ++a) {
+      const PetscReal v_new = flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a];
+      if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
+      vp[a] = v_new;
+    }
   }
 };
 } // namespace
 
-PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
+// The requested sums of every particle (vel: the remap) into the nodal vector.
+static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscScalar *vel)
 {
   Grid          &g = sim.grid;
   PetscScalar   *nodal;
   PetscInt       nlocal, nghosted;
   const PetscInt dof = g.num_velocity_fields * g.NodeStride(), dim = g.dim, stride = g.NodeStride();
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_p2g, 0, 0, 0, 0));
   // The requested dofs of one node, every field: zeroed in the global vector, whose other dofs keep
   // their values.
   PetscInt zero[3 * (1 + 3 * 3)], nzero = 0;
@@ -210,11 +257,36 @@ PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
   Vec        target = direct ? g.nodal : g.nodal_local;
   if (!direct) PetscCall(VecZeroEntries(g.nodal_local));
   PetscCall(VecGetArray(target, &nodal));
-  P2GKernel kernel{sim, what, nodal};
+  P2GKernel kernel{sim, what, nodal, vel, HasExternalForces(sim)};
   PetscCall(DispatchShape(dim, sim.shape, kernel));
   PetscCall(VecRestoreArray(target, &nodal));
   if (!direct) PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.ev_p2g, 0, 0, 0, 0));
+  PetscCall(NodalSums(sim, what, nullptr));
   PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RemapMomentum(Simulation &sim)
+{
+  const PetscScalar *vel;
+  PetscFunctionBeginUser;
+  if (sim.transfer != Transfer::FlipPic) { // APIC and XPIC: their own velocity pass, then the sums
+    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
+    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  PetscCall(PetscLogEventBegin(sim.ev_remap, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(NodalSums(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}, vel));
+  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(PetscLogEventEnd(sim.ev_remap, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
