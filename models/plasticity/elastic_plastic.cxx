@@ -475,7 +475,8 @@ public:
         const Mat3 Dh    = 0.5 * (R_old[k].transpose() * D_lab * R_old[k] + R_new[k].transpose() * D_lab * R_new[k]);
         // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
         omega_old[k]     = crack_band && !failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
-        const Mat3 sh    = R_old[k].transpose() * sigma * R_old[k] / (1 - omega_old[k]);
+        Mat3 sh          = R_old[k].transpose() * sigma * R_old[k];
+        if (omega_old[k] != 0) sh /= 1 - omega_old[k]; // (nine divisions by 1 spared elsewhere)
         const PetscReal mean = sh.trace() / 3, trD = Dh.trace();
         Mat3 Ddev = Dh;
         Ddev.diagonal().array() -= trD / 3;
