@@ -124,16 +124,16 @@ struct P2GKernel {
         }
         Pair s01[DIM], fe01 = {fe[0], fe[1]}; // columns of the stress rows 0 and 1: s01[b] = (s[0][b], s[1][b])
         for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
-        // a rigid particle carries no stress, and its field's velocity is prescribed: mass and
-        // momentum only (its mass gives the contact normals)
-        const bool force_p = !(material && material[p] == sim.rigid_material);
+        // a rigid particle carries no stress, and its field's velocity is prescribed (the grid update
+        // sets it, so its momentum is never read): mass and the mass gradient only, for the contact
+        const bool deformable = !(material && material[p] == sim.rigid_material);
         PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
         if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
         (void)hoop;
-        // the force as a compile-time switch per particle (a runtime test in the node loop costs the
-        // deformable particles more than the rigid ones save)
-        auto scatter = [&](auto with_force) {
-          constexpr bool do_force_p = do_force && decltype(with_force)::value;
+        // deformable or rigid as a compile-time switch per particle (a runtime test in the node loop
+        // costs the deformable particles more than the rigid ones save)
+        auto scatter = [&](auto deformable_p) {
+          constexpr bool body = decltype(deformable_p)::value, do_force_p = do_force && body, do_mom_p = do_mom && body;
           ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
             PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
             if constexpr (do_mass) {
@@ -141,7 +141,7 @@ struct P2GKernel {
               if (nvf > 1)
                 for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
             }
-            if constexpr (APIC) {
+            if constexpr (APIC && body) {
               PetscReal dx[3] = {0, 0, 0};
               const PetscInt I[3] = {i, j, k};
               for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
@@ -151,7 +151,7 @@ struct P2GKernel {
                 for (int b = 0; b < DIM; ++b) va += C[3 * a + b] * dx[b];
                 node[1 + a] += N * mp * va;
               }
-            } else if constexpr (do_mom)
+            } else if constexpr (do_mom_p && !APIC)
               for (int a = 0; a < DIM; ++a) node[1 + a] += N * mp * vp[a];
             if constexpr (do_force_p) {
               // rows 0 and 1 as one pair of doubles (the same operations lane by lane), the rest scalar
@@ -173,8 +173,8 @@ struct P2GKernel {
             if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
           });
         };
-        if (force_p || !do_force) scatter(std::true_type{});
-        else scatter(std::false_type{});
+        if (deformable) scatter(std::true_type{});
+        else if (do_mass) scatter(std::false_type{});
       }
     };
     if (HasExternalForces(sim)) particles(std::true_type{});
