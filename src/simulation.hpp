@@ -247,7 +247,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed);
 // Removes the local particles flagged in `remove` (their mass and energy go to the diagnostics);
 // *removed is the global count.
 PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed);
-PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells = true);
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells = true, PetscInt *num_leaving = nullptr);
 
 PetscErrorCode TakeStep(Simulation &sim);
 

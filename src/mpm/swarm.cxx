@@ -72,12 +72,13 @@ static inline PetscInt FindSlot(const std::vector<PetscInt> &start, PetscInt i)
 }
 
 // Writes the owner rank (DMSwarm_rank) and local cell id of every particle. Particles outside the
-// domain get rank -1 and are counted in num_outside. On one rank, when the caller needs no cell ids
-// (no sort this step), only the inside test runs: every rank is 0 and the cell ids keep older values.
-PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells)
+// domain get rank -1 and are counted in num_outside; num_leaving (if given) counts those owned by
+// another rank. On one rank, when the caller needs no cell ids (no sort this step), only the inside
+// test runs: every rank is 0 and the cell ids keep older values.
+PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells, PetscInt *num_leaving)
 {
   const Grid &g = sim.grid;
-  PetscInt    n, outside = 0;
+  PetscInt    n, outside = 0, leaving = 0;
   PetscReal  *x;
   PetscInt   *rank, *cell;
   PetscFunctionBeginUser;
@@ -103,6 +104,7 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
     }
     PetscCall(fields.RestoreAll());
     *num_outside = outside;
+    if (num_leaving) *num_leaving = 0;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   for (PetscInt p = 0; p < n; ++p) {
@@ -125,9 +127,11 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
     }
     rank[p] = slot[0] + procs[0] * (slot[1] + procs[1] * slot[2]);
     cell[p] = c[0] + cells[0] * (c[1] + cells[1] * c[2]);
+    leaving += rank[p] != sim.rank;
   }
   PetscCall(fields.RestoreAll());
   *num_outside = outside;
+  if (num_leaving) *num_leaving = leaving;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -174,22 +178,25 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
 
 PetscErrorCode MigrateParticles(Simulation &sim)
 {
-  PetscInt   outside = 0, n;
+  PetscInt   outside = 0, leaving = 0, n;
   PetscInt64 global_outside = 0, removed_before = 0, count = 0, local;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
   sim.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
   const bool sort    = sim.sort_interval > 0 && (sim.step + 1) % sim.sort_interval == 0;
   const bool balance = sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0));
-  PetscCall(ComputeOwnerRanks(sim, &outside, sort || balance));
+  PetscCall(ComputeOwnerRanks(sim, &outside, sort || balance, &leaving));
   if (balance) {
     PetscBool changed;
     PetscCall(BalanceGrid(sim, &changed)); // new ownership ranges from the particle work (grid.cxx)
     sim.grid.balanced_at = sim.step;
-    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside, true));
+    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside, true, &leaving));
   }
-  local = outside;
-  PetscCallMPI(MPI_Allreduce(&local, &global_outside, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  // particles that left the domain and particles that change rank, in one reduction
+  const PetscInt64 local_counts[2] = {outside, leaving};
+  PetscInt64       global_counts[2];
+  PetscCallMPI(MPI_Allreduce(local_counts, global_counts, 2, MPIU_INT64, MPI_SUM, sim.comm));
+  global_outside = global_counts[0];
   if (global_outside) {
     if (sim.outside == OutsidePolicy::Error) {
       PetscInt   np;
@@ -222,11 +229,15 @@ PetscErrorCode MigrateParticles(Simulation &sim)
     }
     PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", sim.step, sim.diag.removed_particles - (PetscInt)removed_before));
   }
-  if (sim.size > 1) PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE)); // one rank: every particle stays
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  local = n;
-  PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
+  // DMSwarmMigrate only when a particle changes rank: a step moves particles a fraction of a cell, so
+  // most steps none crosses a rank boundary, and the migration's collectives (about ten) are spared
+  if (global_counts[1] > 0) {
+    PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE));
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    local = n;
+    PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
+    PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
+  }
   PetscCall(PetscLogEventEnd(sim.ev_migrate, 0, 0, 0, 0));
   if (sort) PetscCall(SortParticlesByCell(sim));
   PetscFunctionReturn(PETSC_SUCCESS);
