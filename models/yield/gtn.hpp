@@ -90,8 +90,20 @@ inline void ClippedCosh(PetscReal x, PetscReal &C, PetscReal &S, PetscReal &dS)
 {
   const PetscReal ax = std::fabs(x);
   if (ax <= kCoshClip) {
-    C  = std::cosh(x);
-    S  = std::sinh(x);
+    // both from one exponential (glibc's cosh and sinh call one each): e^|x| for |x| >= 1, where
+    // (e - 1/e)/2 has no cancellation; below, t = expm1|x| and sinh = (2t - t^2/(t + 1))/2,
+    // cosh = 1 + t^2/(2(t + 1)) (glibc's e_sinh.c and e_cosh.c forms, accurate to round-off)
+    PetscReal sh;
+    if (ax >= 1) {
+      const PetscReal e = std::exp(ax);
+      C                 = 0.5 * e + 0.5 / e;
+      sh                = 0.5 * e - 0.5 / e;
+    } else {
+      const PetscReal t = std::expm1(ax), w = t + 1;
+      C                 = 1 + t * t / (w + w);
+      sh                = 0.5 * (2 * t - t * t / w);
+    }
+    S  = std::copysign(sh, x);
     dS = C;
   } else {
     const PetscReal ch = std::cosh(kCoshClip), sh = std::sinh(kCoshClip);
