@@ -30,11 +30,13 @@ inline void PrincipalDeviator(const PetscReal *S, PetscReal ev[3])
     return;
   }
   const PetscReal J3 = d0 * (d1 * d2 - o12 * o12) - o01 * (o01 * d2 - o12 * o02) + o02 * (o01 * o12 - d1 * o02);
-  PetscReal       r  = 0.5 * J3 * std::pow(3 / J2, 1.5);
-  r                  = r > 1 ? 1 : (r < -1 ? -1 : r);
+  const PetscReal inv = 3 / J2;
+  PetscReal       r   = 0.5 * J3 * inv * std::sqrt(inv); // J3/2 (3/J2)^(3/2)
+  r                   = r > 1 ? 1 : (r < -1 ? -1 : r);
   const PetscReal t = std::acos(r) / 3, a = 2 * std::sqrt(J2 / 3);
-  ev[0] = a * std::cos(t);
-  ev[2] = a * std::cos(t + 2 * PETSC_PI / 3);
+  const PetscReal cos_t = std::cos(t), sin_t = std::sin(t); // cos(t + 2 pi/3) = -cos t/2 - sin t sqrt(3)/2
+  ev[0] = a * cos_t;
+  ev[2] = -a * (0.5 * cos_t + 0.8660254037844386 * sin_t);
   ev[1] = -ev[0] - ev[2];
 }
 

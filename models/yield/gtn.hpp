@@ -19,6 +19,10 @@
 // function theorem and enter the Jacobian. The flow model is fed the matrix plastic rate de/dt
 // floored at flow.min_rate, as in the radial return (MakeFlowPoint); the rate term of the
 // hardening enters only above the floor.
+// A non-hydrostatic point is first returned by the one-level Newton on (dv, dq, de) (SolveCoupled:
+// the work equation as a third residual, one flow evaluation per iterate, warm-started from the
+// previous step's plastic rate, else from the trial state); the nested iteration above (Solve) runs
+// only where that fails, with the fallbacks below after it.
 // Safeguards: the iterates stay in the box dv between 0 and sigma_m,tr/K (sigma_m keeps its sign:
 // dv has the sign of dPhi/dsigma_m, i.e. of sigma_m), dv >= -f_n/(1 - f_n) (voids close at most to
 // f = 0; under strong compression the solution has f_{n+1} small but positive, since the hydrostatic
@@ -86,8 +90,20 @@ inline void ClippedCosh(PetscReal x, PetscReal &C, PetscReal &S, PetscReal &dS)
 {
   const PetscReal ax = std::fabs(x);
   if (ax <= kCoshClip) {
-    C  = std::cosh(x);
-    S  = std::sinh(x);
+    // both from one exponential (glibc's cosh and sinh call one each): e^|x| for |x| >= 1, where
+    // (e - 1/e)/2 has no cancellation; below, t = expm1|x| and sinh = (2t - t^2/(t + 1))/2,
+    // cosh = 1 + t^2/(2(t + 1)) (glibc's e_sinh.c and e_cosh.c forms, accurate to round-off)
+    PetscReal sh;
+    if (ax >= 1) {
+      const PetscReal e = std::exp(ax);
+      C                 = 0.5 * e + 0.5 / e;
+      sh                = 0.5 * e - 0.5 / e;
+    } else {
+      const PetscReal t = std::expm1(ax), w = t + 1;
+      C                 = 1 + t * t / (w + w);
+      sh                = 0.5 * (2 * t - t * t / w);
+    }
+    S  = std::copysign(sh, x);
     dS = C;
   } else {
     const PetscReal ch = std::cosh(kCoshClip), sh = std::sinh(kCoshClip);
@@ -295,6 +311,149 @@ inline bool Solve(const Flow &flow, const Chunk &c, int k, const GTNParameters &
   return std::fabs(st.Phi) <= 100 * tol && std::fabs(st.R2) <= 100 * tol * st.R2_scale;
 }
 
+// One-level Newton on (dv, dq, de), tried before Solve: the plastic-work equation that Evaluate
+// solves by an inner Newton for every iterate becomes the third residual,
+//   R3 = (1 - f) sigma_f(eps_M,n + de, de/dt) de - (sigma_m dv + q dq) = 0,
+// so an iterate costs one flow evaluation instead of two to three. The 3x3 Newton system is reduced
+// to 2x2 by eliminating d(de) with the row of R3, d(de) = -(R3 + R3_v d(dv) + R3_q d(dq)) / R3_e; at
+// R3 = 0 the reduced matrix is Evaluate's Jacobian (implicit function theorem) and d(de) its
+// first-order prediction of de. It stops at Solve's tests, |Phi| <= tol, |R2| <= tol R2_scale, and the
+// inner solve's |R3| <= inner_tol W, so the state it returns passes the same tests as Solve's (its
+// last step is a full Newton step in all three unknowns, so it lands closer to the root than the
+// nested iteration did). Same box and projected backtracking line search, on the merit
+// Phi^2 + (R2/scale)^2 + (R3/(sigma_f scale))^2. Returns false on a non-positive R3_e, a singular
+// or non-finite step, or no decrease; the caller then runs Solve.
+struct CoupledState {
+  PetscReal dv = 0, dq = 0, de = 0;
+  PetscReal sigma_m = 0, q = 0;
+  FlowValue y;
+  PetscReal H = 0; // d sigma_f / d de (strain plus rate term above the floor)
+  PetscReal Phi = 0, R2 = 0, R2_scale = 0, R3 = 0, W = 0;
+  PetscReal J[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; // d(Phi, R2, R3)/d(dv, dq, de)
+};
+
+// Residuals and Jacobian at (dv, dq, de) with one flow evaluation (the partial derivatives at fixed
+// de; the sigma_f dependence enters through the de column).
+template <class Flow>
+inline bool EvaluateCoupled(const Flow &flow, const Chunk &c, int k, const GTNParameters &g, const Point &P, CoupledState &s)
+{
+  s.sigma_m          = P.sigma_m_tr - P.K * s.dv;
+  s.q                = P.q_tr - 3 * P.mu * s.dq;
+  const PetscReal fr = P.f_n + P.growth * (1 - P.f_n) * s.dv;
+  PetscReal       f = fr, f_v = P.growth * (1 - P.f_n);
+  if (fr < 0) f = 0, f_v = 0;
+  if (fr > kMaxPorosity) f = kMaxPorosity, f_v = 0;
+  PetscReal       dfs;
+  const PetscReal fs = EffectivePorosity(g, f, &dfs), fs_v = dfs * f_v, omf = 1 - f;
+  s.W                = s.sigma_m * s.dv + s.q * s.dq;
+  if (s.de == 0 && P.y0) s.y = *P.y0; // the same point and state: the same values
+  else flow.Evaluate(MakeFlowPoint(flow, c, k, s.de), s.y);
+  s.H                = s.y.d_strain + s.y.d_rate / c.dt;
+  const PetscReal sf = s.y.sigma;
+  if (!(sf > 0)) return false;
+  const PetscReal x = 1.5 * g.q2 * s.sigma_m / sf;
+  PetscReal       C, S, dS;
+  ClippedCosh(x, C, S, dS);
+  const PetscReal x_v = -1.5 * g.q2 * P.K / sf, x_e = -x * s.H / sf; // x_q = 0
+  const PetscReal q2sf = s.q * s.q / (sf * sf);
+  s.Phi                = q2sf + 2 * g.q1 * fs * C - (1 + g.q3 * fs * fs);
+  s.J[0][0]            = 2 * g.q1 * (fs_v * C + fs * S * x_v) - 2 * g.q3 * fs * fs_v;
+  s.J[0][1]            = -6 * P.mu * s.q / (sf * sf);
+  s.J[0][2]            = -2 * q2sf / sf * s.H + 2 * g.q1 * fs * S * x_e;
+  const PetscReal A = s.q / sf, A_q = -3 * P.mu / sf, A_e = -A * s.H / sf; // A_v = 0
+  const PetscReal b = 1.5 * g.q1 * g.q2;
+  const PetscReal B = b * fs * S, B_v = b * (fs_v * S + fs * dS * x_v), B_e = b * fs * dS * x_e; // B_q = 0
+  s.R2              = s.dv * A - s.dq * B;
+  s.R2_scale        = std::fabs(s.dv * A) + std::fabs(s.dq * B);
+  s.J[1][0]         = A - s.dq * B_v;
+  s.J[1][1]         = s.dv * A_q - B;
+  s.J[1][2]         = s.dv * A_e - s.dq * B_e;
+  s.R3              = omf * sf * s.de - s.W;
+  s.J[2][0]         = -f_v * sf * s.de - (s.sigma_m - P.K * s.dv);
+  s.J[2][1]         = -(s.q - 3 * P.mu * s.dq);
+  s.J[2][2]         = omf * (sf + s.de * s.H);
+  return std::isfinite(s.Phi) && std::isfinite(s.R2) && std::isfinite(s.R3);
+}
+
+// Warm start of the one-level Newton from the point's plastic rate of the previous step (a steady
+// plastic flow keeps its rate, as in the radial return's warm start): sigma_f at de_n = rate_n dt;
+// q on the surface of f*_n at the trial mean stress (eq. 13 solved for q), dq = (q_tr - q)/(3 mu);
+// dv from normality R2 = 0 there; de from the plastic-work equation with that sigma_f. Returns false
+// (start from the trial state) when the point has no previous rate or the surface has no such q.
+template <class Flow>
+inline bool WarmStart(const Flow &flow, const Chunk &c, int k, const GTNParameters &g, const Point &P, PetscReal dv_lo, PetscReal dv_hi, PetscReal dq_bound, CoupledState &st)
+{
+  const PetscReal de_n = c.plastic_strain_rate[k] * c.dt;
+  if (!(de_n > 0) || !std::isfinite(de_n)) return false;
+  FlowValue y;
+  flow.Evaluate(MakeFlowPoint(flow, c, k, de_n), y);
+  if (!(y.sigma > 0)) return false;
+  const PetscReal fs_n = EffectivePorosity(g, P.f_n, nullptr);
+  PetscReal       C, S, dS;
+  ClippedCosh(1.5 * g.q2 * P.sigma_m_tr / y.sigma, C, S, dS);
+  const PetscReal q_surface2 = y.sigma * y.sigma * (1 + g.q3 * fs_n * fs_n - 2 * g.q1 * fs_n * C);
+  if (!(q_surface2 > 0) || !std::isfinite(q_surface2)) return false;
+  const PetscReal q_surface = std::sqrt(q_surface2);
+  st.dq                     = PetscMin(PetscMax((P.q_tr - q_surface) / (3 * P.mu), 0.0), dq_bound);
+  st.dv                     = PetscMin(PetscMax(st.dq * 1.5 * g.q1 * g.q2 * fs_n * S * y.sigma / q_surface, dv_lo), dv_hi);
+  const PetscReal W         = (P.sigma_m_tr - P.K * st.dv) * st.dv + (P.q_tr - 3 * P.mu * st.dq) * st.dq;
+  const PetscReal f         = PetscMin(PetscMax(P.f_n + P.growth * (1 - P.f_n) * st.dv, 0.0), kMaxPorosity);
+  st.de                     = W > 0 ? W / ((1 - f) * y.sigma) : de_n;
+  return true;
+}
+
+// The one-level Newton, from the warm start (warm = true; false if there is none) or from the
+// trial state.
+template <class Flow>
+inline bool SolveCoupled(const Flow &flow, const Chunk &c, int k, const GTNParameters &g, const Point &P, PetscReal tol, PetscInt max_it, bool warm, CoupledState &st)
+{
+  const PetscReal inner_tol = PetscMax(1e-2 * tol, 1e-14);
+  const PetscReal dv_bound = P.sigma_m_tr / P.K, dq_bound = P.q_tr / (3 * P.mu);
+  PetscReal       dv_lo = PetscMin(0.0, dv_bound), dv_hi = PetscMax(0.0, dv_bound);
+  if (P.growth > 0) dv_lo = PetscMax(dv_lo, -P.f_n / (1 - P.f_n)); // void closure stops at f = 0
+  const PetscReal scale = std::fabs(dv_bound) + dq_bound;          // strain scale of R2 and R3 in the merit
+  auto            merit = [&](const CoupledState &x) {
+    const PetscReal r2 = x.R2 / scale, r3 = x.R3 / (x.y.sigma * scale);
+    return x.Phi * x.Phi + r2 * r2 + r3 * r3;
+  };
+  auto converged = [&](const CoupledState &x) { return std::fabs(x.Phi) <= tol && std::fabs(x.R2) <= tol * x.R2_scale && std::fabs(x.R3) <= inner_tol * x.W; };
+  st = CoupledState();
+  if (warm && !WarmStart(flow, c, k, g, P, dv_lo, dv_hi, dq_bound, st)) return false;
+  if (!EvaluateCoupled(flow, c, k, g, P, st)) return false;
+  for (PetscInt it = 0; it < max_it; ++it) {
+    if (converged(st)) return true;
+    const PetscReal r3_e = st.J[2][2];
+    if (!(r3_e > 0)) return false;
+    const PetscReal e_0 = -st.R3 / r3_e, e_v = -st.J[2][0] / r3_e, e_q = -st.J[2][1] / r3_e; // d(de) = e_0 + e_v d(dv) + e_q d(dq)
+    const PetscReal a00 = st.J[0][0] + st.J[0][2] * e_v, a01 = st.J[0][1] + st.J[0][2] * e_q;
+    const PetscReal a10 = st.J[1][0] + st.J[1][2] * e_v, a11 = st.J[1][1] + st.J[1][2] * e_q;
+    const PetscReal r0 = st.Phi + st.J[0][2] * e_0, r1 = st.R2 + st.J[1][2] * e_0;
+    const PetscReal det = a00 * a11 - a01 * a10;
+    if (det == 0 || !std::isfinite(det)) return false;
+    const PetscReal step_v = -(a11 * r0 - a01 * r1) / det;
+    const PetscReal step_q = -(-a10 * r0 + a00 * r1) / det;
+    const PetscReal step_e = e_0 + e_v * step_v + e_q * step_q;
+    // projected backtracking line search on the merit; de >= 0 (a step across 0 halves de instead)
+    const PetscReal m0       = merit(st);
+    CoupledState    trial;
+    PetscReal       lambda   = 1;
+    bool            accepted = false;
+    for (int ls = 0; ls < 40; ++ls, lambda *= 0.5) {
+      trial.dv           = PetscMin(PetscMax(st.dv + lambda * step_v, dv_lo), dv_hi);
+      trial.dq           = PetscMin(PetscMax(st.dq + lambda * step_q, 0.0), dq_bound);
+      const PetscReal de = st.de + lambda * step_e;
+      trial.de           = de > 0 ? de : 0.5 * st.de;
+      if (EvaluateCoupled(flow, c, k, g, P, trial) && (merit(trial) < m0 || converged(trial))) {
+        accepted = true;
+        break;
+      }
+    }
+    if (!accepted) return false;
+    st = trial;
+  }
+  return converged(st);
+}
+
 // Last resort when the 2x2 Newton stalls: the flow direction is frozen at the trial state
 // (associated flow, dv = lambda dPhi/dsigma_m, dq = lambda dPhi/dq) and Phi(lambda) = 0 is solved
 // by a bracketed secant/bisection (Illinois) on [0, lambda_max], where the box of (dv, dq) ends.
@@ -385,7 +544,13 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
     const bool hydrostatic = q_trial <= gtn::kHydrostatic * y.sigma;
     gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0, &y};
     gtn::State st;
-    bool       ok = gtn::Solve(flow, c, k, gtn, P, hydrostatic, tol, max_it, st);
+    bool       ok = false;
+    if (!hydrostatic) { // the one-level Newton from the warm start, else from the trial state
+      gtn::CoupledState cs;
+      ok = gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, true, cs) || gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, false, cs);
+      if (ok) st.dv = cs.dv, st.dq = cs.dq, st.de = cs.de, st.sigma_m = cs.sigma_m, st.q = cs.q, st.y = cs.y, st.H = cs.H;
+    }
+    if (!ok) ok = gtn::Solve(flow, c, k, gtn, P, hydrostatic, tol, max_it, st);
     if (!ok && P.growth > 0) {
       // explosive void growth: no root of the implicit system reachable from the trial state; the
       // return is repeated with f fixed at f_n (explicit growth, same update in the material)
