@@ -456,7 +456,7 @@ public:
     c.taylor_quinney = taylor_quinney;
     c.adiabatic      = adiabatic ? 1 : 0;
     const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
-    Mat3            R_new[kChunk], R_old[kChunk];
+    PetscReal       R_next[kChunk][9]; // R_{n+1} of the chunk's points (row-major)
     PetscReal       omega_old[kChunk]; // crack band: the softening at t_n (0 otherwise)
     PetscInt        p = 0;
     while (p < mp.n) {
@@ -465,39 +465,47 @@ public:
       for (; p < mp.n && c.n < kChunk; ++p)
         if (mp.material[p] == id) c.index[c.n++] = p;
       if (!c.n) break;
-      // 1. kinematics in the co-rotated frame
+      // 1. kinematics in the co-rotated frame (scalar code: see RotateToFrame)
       for (int k = 0; k < c.n; ++k) {
-        const PetscInt q = c.index[k];
-        Mat3CMap       L(mp.L + 9 * q), F(mp.F + 9 * q), sigma(mp.stress + 9 * q);
-        R_old[k]         = Mat3CMap(R + 9 * q);
-        R_new[k]         = PolarRotationFrom(F, R_old[k]); // warm start: R moves little per step
-        const Mat3 D_lab = 0.5 * (L + L.transpose());
-        const Mat3 Dh    = 0.5 * (R_old[k].transpose() * D_lab * R_old[k] + R_new[k].transpose() * D_lab * R_new[k]);
+        const PetscInt   q     = c.index[k];
+        const PetscReal *L     = mp.L + 9 * q, *R_old = R + 9 * q;
+        PetscReal       *R_new = R_next[k];
+        if (!PolarRotationWarm(mp.F + 9 * q, R_old, R_new)) { // warm start: R moves little per step
+          Mat3Map R_fallback(R_new);
+          R_fallback = PolarRotation(Mat3CMap(mp.F + 9 * q));
+        }
+        // D_hat = (R_old^T D R_old + R_new^T D R_new)/2, D = sym L
+        const PetscReal D_lab[9] = {L[0], 0.5 * (L[1] + L[3]), 0.5 * (L[2] + L[6]), 0.5 * (L[3] + L[1]), L[4], 0.5 * (L[5] + L[7]), 0.5 * (L[6] + L[2]), 0.5 * (L[7] + L[5]), L[8]};
+        PetscReal      *Dh       = c.D_hat[k], D_new[9];
+        RotateToFrame(R_old, D_lab, Dh);
+        RotateToFrame(R_new, D_lab, D_new);
+        for (int a = 0; a < 9; ++a) Dh[a] = 0.5 * (Dh[a] + D_new[a]);
         // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
         omega_old[k]     = crack_band && !failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
-        Mat3 sh          = R_old[k].transpose() * sigma * R_old[k];
-        if (omega_old[k] != 0) sh /= 1 - omega_old[k]; // (nine divisions by 1 spared elsewhere)
-        const PetscReal mean = sh.trace() / 3, trD = Dh.trace();
-        Mat3 Ddev = Dh;
-        Ddev.diagonal().array() -= trD / 3;
+        PetscReal *sh    = c.deviator[k]; // s_n for now
+        RotateToFrame(R_old, mp.stress + 9 * q, sh);
+        if (omega_old[k] != 0) // (nine divisions by 1 spared elsewhere)
+          for (int a = 0; a < 9; ++a) sh[a] /= 1 - omega_old[k];
+        const PetscReal mean = (sh[0] + sh[4] + sh[8]) / 3, trD = Dh[0] + Dh[4] + Dh[8];
+        sh[0] -= mean;
+        sh[4] -= mean;
+        sh[8] -= mean;
+        const PetscReal Ddev0 = Dh[0] - trD / 3, Ddev1 = Dh[4] - trD / 3, Ddev2 = Dh[8] - trD / 3;
+        const PetscReal Ddev_squared = Ddev0 * Ddev0 + Ddev1 * Ddev1 + Ddev2 * Ddev2 + 2 * (Dh[1] * Dh[1] + Dh[2] * Dh[2] + Dh[5] * Dh[5]);
         // the EOS sees the elastic density: the plastic dilatation of the voids (GTN) is not
         // elastic compression, rho_e = rho exp(tr eps_p)
         c.density[k]             = mp.mass[q] / mp.volume[q] * (dilatation[q] != 0 ? std::exp(dilatation[q]) : 1);
         c.temperature[k]         = mp.temperature[q];
         c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
         c.trace_D[k]             = trD;
-        c.total_rate[k]          = std::sqrt(2.0 / 3.0 * Ddev.squaredNorm());
+        c.total_rate[k]          = std::sqrt(2.0 / 3.0 * Ddev_squared);
         c.mean_stress_old[k]     = mean;
         c.plastic_strain[k]      = eps[q];
         c.plastic_strain_rate[k] = rate[q];
         c.porosity[k]            = f[q];
         c.damage[k]              = D[q];
         for (int h = 0; h < kMaxHistory; ++h) c.history[k][h] = history[kMaxHistory * q + h];
-        Mat3Map(c.D_hat[k]) = Dh;
-        Mat3 s              = sh;
-        s.diagonal().array() -= mean;
-        Mat3Map(c.deviator[k]) = s; // s_n for now
-        c.unstable[k]          = 0;
+        c.unstable[k] = 0;
       }
       // 2. state: EOS, melt, shear modulus, specific heat
       eos->Evaluate(c);
@@ -636,11 +644,11 @@ public:
           dev.diagonal().array() += p;
           elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * dev.squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
         }
-        Mat3Map         sigma(mp.stress + 9 * q);
-        const Mat3      sigma_old = sigma;
-        sigma                     = R_new[k] * s_hat * R_new[k].transpose();
-        Mat3Map(R + 9 * q)        = R_new[k];
-        const PetscReal stress_work = StressWork(sigma_old.data(), sigma.data(), mp.L + 9 * q, mp.volume[q], dt);
+        PetscReal *sigma = mp.stress + 9 * q, sigma_old[9];
+        for (int a = 0; a < 9; ++a) sigma_old[a] = sigma[a];
+        RotateFromFrame(R_next[k], s_hat.data(), sigma);
+        for (int a = 0; a < 9; ++a) R[9 * q + a] = R_next[k][a];
+        const PetscReal stress_work = StressWork(sigma_old, sigma, mp.L + 9 * q, mp.volume[q], dt);
         mp.internal_energy[q] += stress_work;
         if (softening) { // crack band: what the softening band dissipates, stress work less stored elastic energy
           released[q] += stress_work - (elastic[q] - elastic_old);

@@ -32,34 +32,82 @@ namespace burst {
 // S = sym A and a the axial vector of skew A, the linearisation gives (tr S I - S) w = 2 a (exact
 // for symmetric A, quadratically convergent). A step's rotation increment is small (|w| ~ |W| dt),
 // so two or three iterations reach round-off, against five to seven of the scaled Newton from F.
-// Falls back to PolarRotation(F) when tr S I - S is not positive definite (U not positive definite
-// near R0: far from the polar solution) or the iteration does not settle.
-inline Mat3 PolarRotationFrom(const Mat3 &F, const Mat3 &R0)
+// Returns false when tr S I - S is not positive definite (U not positive definite near R0: far from
+// the polar solution) or the iteration does not settle; the caller then falls back to PolarRotation.
+// Row-major arrays, written out in scalars: this runs once per particle and step (the Eigen
+// products with their temporaries cost about twice as many instructions).
+inline bool PolarRotationWarm(const PetscReal *F, const PetscReal *R0, PetscReal *R)
 {
-  Mat3 R = R0;
+  PetscReal Rk[9];
+  for (int i = 0; i < 9; ++i) Rk[i] = R0[i];
   for (int it = 0; it < 8; ++it) {
-    const Mat3      A = R.transpose() * F;
-    const PetscReal a[3] = {0.5 * (A(2, 1) - A(1, 2)), 0.5 * (A(0, 2) - A(2, 0)), 0.5 * (A(1, 0) - A(0, 1))};
+    PetscReal A[9]; // R_k^T F
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) A[3 * i + j] = Rk[i] * F[j] + Rk[3 + i] * F[3 + j] + Rk[6 + i] * F[6 + j];
+    const PetscReal a[3] = {0.5 * (A[7] - A[5]), 0.5 * (A[2] - A[6]), 0.5 * (A[3] - A[1])};
     // M = tr(S) I - S, S = sym A (symmetric); solve M w = 2 a by Cramer's rule
-    const PetscReal trS = A(0, 0) + A(1, 1) + A(2, 2);
-    const PetscReal m00 = trS - A(0, 0), m11 = trS - A(1, 1), m22 = trS - A(2, 2);
-    const PetscReal m01 = -0.5 * (A(0, 1) + A(1, 0)), m02 = -0.5 * (A(0, 2) + A(2, 0)), m12 = -0.5 * (A(1, 2) + A(2, 1));
+    const PetscReal trS = A[0] + A[4] + A[8];
+    const PetscReal m00 = trS - A[0], m11 = trS - A[4], m22 = trS - A[8];
+    const PetscReal m01 = -0.5 * (A[1] + A[3]), m02 = -0.5 * (A[2] + A[6]), m12 = -0.5 * (A[5] + A[7]);
     const PetscReal c00 = m11 * m22 - m12 * m12, c01 = m02 * m12 - m01 * m22, c02 = m01 * m12 - m02 * m11;
     const PetscReal det = m00 * c00 + m01 * c01 + m02 * c02;
-    if (!(m00 > 0 && m00 * m11 - m01 * m01 > 0 && det > 0)) break; // not positive definite: fall back
+    if (!(m00 > 0 && m00 * m11 - m01 * m01 > 0 && det > 0)) return false; // not positive definite
     const PetscReal c11 = m00 * m22 - m02 * m02, c12 = m01 * m02 - m00 * m12, c22 = m00 * m11 - m01 * m01;
-    const PetscReal inv = 2 / det;
+    const PetscReal inv  = 2 / det;
     const PetscReal w[3] = {inv * (c00 * a[0] + c01 * a[1] + c02 * a[2]), inv * (c01 * a[0] + c11 * a[1] + c12 * a[2]), inv * (c02 * a[0] + c12 * a[1] + c22 * a[2])};
-    const PetscReal ww = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
-    if (!(ww < 0.25)) break; // more than about 0.5 rad from the start: not a warm start
-    const PetscReal h[3] = {0.5 * w[0], 0.5 * w[1], 0.5 * w[2]}, s = 2 / (1 + 0.25 * ww);
-    Mat3            H;
-    H << 0, -h[2], h[1], h[2], 0, -h[0], -h[1], h[0], 0;
-    const Mat3 Q = Mat3::Identity() + s * (H + H * H);
-    R            = R * Q;
-    if (ww < 1e-18) return R; // |w| < 1e-9: the next correction, of order |w|^2, is round-off
+    const PetscReal ww   = w[0] * w[0] + w[1] * w[1] + w[2] * w[2];
+    if (!(ww < 0.25)) return false; // more than about 0.5 rad from the start: not a warm start
+    const PetscReal h0 = 0.5 * w[0], h1 = 0.5 * w[1], h2 = 0.5 * w[2], s = 2 / (1 + 0.25 * ww);
+    // Q = I + s (H + H^2), H = [h]; H^2 = h h^T - |h|^2 I, its diagonal -(h_j^2 + h_k^2)
+    const PetscReal Q[9] = {1 + s * -(h2 * h2 + h1 * h1), s * (-h2 + h0 * h1), s * (h1 + h0 * h2), //
+                            s * (h2 + h0 * h1), 1 + s * -(h2 * h2 + h0 * h0), s * (-h0 + h1 * h2),  //
+                            s * (-h1 + h0 * h2), s * (h0 + h1 * h2), 1 + s * -(h1 * h1 + h0 * h0)};
+    const bool      last = ww < 1e-18; // |w| < 1e-9: the next correction, of order |w|^2, is round-off
+    PetscReal      *out  = last ? R : Rk;
+    PetscReal       RQ[9];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) RQ[3 * i + j] = Rk[3 * i] * Q[j] + Rk[3 * i + 1] * Q[3 + j] + Rk[3 * i + 2] * Q[6 + j];
+    for (int i = 0; i < 9; ++i) out[i] = RQ[i];
+    if (last) return true;
   }
+  return false;
+}
+
+inline Mat3 PolarRotationFrom(const Mat3 &F, const Mat3 &R0)
+{
+  Mat3 R;
+  if (PolarRotationWarm(F.data(), R0.data(), R.data())) return R;
   return PolarRotation(F);
 }
 
+} // namespace burst
+
+namespace burst {
+// Rotations of a symmetric tensor between the laboratory and a co-rotated frame, row-major 3x3
+// arrays written out in scalars (the per-particle stress updates do two or three of these, and the
+// Eigen products with their temporaries cost about twice as many instructions). U = R^T S (or R S)
+// in full, then only the upper triangle of U R (or U R^T), mirrored: 45 multiplications instead of
+// 54, and the result is symmetric to the last bit. S itself need not be exactly symmetric.
+
+// out = R^T S R (out must not overlap R or S)
+inline void RotateToFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out)
+{
+  PetscReal U[9], o[6];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) U[3 * i + j] = R[i] * S[j] + R[3 + i] * S[3 + j] + R[6 + i] * S[6 + j];
+  for (int i = 0, n = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j, ++n) o[n] = U[3 * i] * R[j] + U[3 * i + 1] * R[3 + j] + U[3 * i + 2] * R[6 + j];
+  out[0] = o[0], out[1] = out[3] = o[1], out[2] = out[6] = o[2], out[4] = o[3], out[5] = out[7] = o[4], out[8] = o[5];
+}
+
+// out = R S R^T (out must not overlap R or S)
+inline void RotateFromFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out)
+{
+  PetscReal U[9], o[6];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) U[3 * i + j] = R[3 * i] * S[j] + R[3 * i + 1] * S[3 + j] + R[3 * i + 2] * S[6 + j];
+  for (int i = 0, n = 0; i < 3; ++i)
+    for (int j = i; j < 3; ++j, ++n) o[n] = U[3 * i] * R[3 * j] + U[3 * i + 1] * R[3 * j + 1] + U[3 * i + 2] * R[3 * j + 2];
+  out[0] = o[0], out[1] = out[3] = o[1], out[2] = out[6] = o[2], out[4] = o[3], out[5] = out[7] = o[4], out[8] = o[5];
+}
 } // namespace burst
