@@ -119,10 +119,12 @@ PetscErrorCode CreateGrid(Simulation &sim)
   PetscCall(PetscOptionsInt("-grid_balance_interval", "With -grid_balance: steps between re-balances (new ranges, particles migrated); 0: at start-up only", "", g.balance_interval, &g.balance_interval, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_rigid_weight", "With -grid_balance: work of a rigid particle relative to a deformable one (-), in [0, 1] (no stress update)", "", g.balance_rigid_weight, &g.balance_rigid_weight, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_node_weight", "With -grid_balance: work of a grid node relative to a particle (-), >= 0 (grid update, ghost exchange)", "", g.balance_node_weight, &g.balance_node_weight, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_plastic_weight", "With -grid_balance: work of a particle that yielded in the last step relative to an elastic one (-), >= 1 (its return mapping); with -grid_balance_interval the ranges follow the plastic zone", "", g.balance_plastic_weight, &g.balance_plastic_weight, nullptr));
   PetscOptionsEnd();
   PetscCheck(g.balance_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
   PetscCall(CheckRange(sim.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-grid_balance_node_weight", g.balance_node_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-grid_balance_plastic_weight", g.balance_plastic_weight, 1, PETSC_MAX_REAL, PETSC_FALSE));
   if (!sim.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &sim.ev_balance));
 
   for (PetscInt d = 0; d < g.dim; ++d) {
@@ -153,8 +155,9 @@ PetscErrorCode CreateGrid(Simulation &sim)
 
 // Load balance: new node ownership ranges from the particle work, on the same process grid. The
 // work along each direction is the sum over the slabs of cells (one cell index, all of the others) of
-// the particles' weights (1 for a deformable particle, -grid_balance_rigid_weight for a rigid one)
-// plus -grid_balance_node_weight per node; each direction's ranges cut that profile into equal parts
+// the particles' weights (1 for a deformable particle, -grid_balance_rigid_weight for a rigid one,
+// times -grid_balance_plastic_weight for a particle that yielded in the last step) plus
+// -grid_balance_node_weight per node; each direction's ranges cut that profile into equal parts
 // (a cell goes with its lower node, petsc.md 3). Every rank keeps at least the ghost width plus one
 // nodes per direction (DMDA's minimum). The particles must carry their cell ids (ComputeOwnerRanks);
 // the caller recomputes the owner ranks and migrates when the ranges changed. The grid vectors are
@@ -178,16 +181,22 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
       PetscReal v[3];
       weight[m] = sim.materials[m]->IsRigid(v) ? g.balance_rigid_weight : 1.0;
     }
-    PetscInt        n;
-    const PetscInt *cell, *material;
+    // the plastic rate of the metal models (models/plasticity), when a material carries it
+    bool plastic_field = false;
+    for (const auto &m : sim.materials)
+      for (const OutputField &of : m->OutputFields()) plastic_field = plastic_field || std::string(of.name) == "plastic_strain_rate";
+    PetscInt         n;
+    const PetscInt  *cell, *material;
+    const PetscReal *rate = nullptr;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
     PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
     PetscCall(fields.Get(field::material, &material));
+    if (plastic_field && g.balance_plastic_weight != 1) PetscCall(fields.Get("plastic_strain_rate", &rate));
     for (PetscInt p = 0; p < n; ++p) {
       if (cell[p] < 0) continue;
       const PetscInt  c[3] = {cell[p] % nc[0], (cell[p] / nc[0]) % nc[1], cell[p] / (nc[0] * nc[1])};
-      const PetscReal w    = weight[material[p]];
+      const PetscReal w    = weight[material[p]] * (rate && rate[p] > 0 ? g.balance_plastic_weight : 1.0);
       for (PetscInt d = 0; d < dim; ++d) work[offset[d] + c[d]] += w;
     }
     PetscCall(fields.RestoreAll());
