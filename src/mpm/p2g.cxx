@@ -24,8 +24,7 @@ struct P2GKernel {
   Simulation        &sim;
   P2GRequest         what;
   PetscScalar       *nodal;
-  const PetscScalar *vel         = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
-  bool               fext_active = false;   // HasExternalForces
+  const PetscScalar *vel = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
@@ -106,7 +105,7 @@ struct P2GKernel {
     // external forces as a compile-time switch for the whole loop: without loads (most scenes) the
     // force is the internal one alone
     auto particles = [&](auto external) {
-      constexpr bool do_external = do_force && decltype(external)::value;
+      constexpr bool has_external = decltype(external)::value, do_external = do_force && has_external;
       for (PetscInt p = 0; p < n; ++p) {
         Stencil<DIM, S> &st = stencils[p];
         if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -116,7 +115,7 @@ struct P2GKernel {
         // The particle's values in locals: the node array's stores cannot alias them, so the scatter
         // below reads them from registers (same operations, same order).
         PetscReal vp[DIM], s[DIM][DIM], fe[DIM] = {};
-        if constexpr (REMAP) RemapVelocity<DIM, S>(st, p, vf, material, index, vdof, flip, dt, fext, v, work);
+        if constexpr (REMAP) RemapVelocity<DIM, S>(st, p, vf, material, index, vdof, flip, dt, has_external ? fext : nullptr, v, work);
         for (int a = 0; a < DIM; ++a) {
           vp[a] = v[DIM * p + a];
           if constexpr (do_external) fe[a] = fext[DIM * p + a];
@@ -185,11 +184,12 @@ struct P2GKernel {
   }
 
   // G2P's velocity update of particle p (the FLIP/PIC blend; a rigid particle takes the body's
-  // velocity), the same operations in the same order as GridToParticles' velocity pass.
+  // velocity), the same operations in the same order as GridToParticles' velocity pass. fext:
+  // null without loads (no external work).
   template <int DIM, ShapeType S>
   void RemapVelocity(const Stencil<DIM, S> &st, PetscInt p, PetscInt vf, const PetscInt *material, const LocalNodeIndex &index, PetscInt vdof, PetscReal flip, PetscReal dt, const PetscReal *fext, PetscReal *v, PetscReal &work) const
   {
-    const bool external = fext_active;
+    const bool external = fext != nullptr;
     PetscReal *vp       = v + DIM * p;
     if (material && material[p] == sim.rigid_material) {
       for (int a = 0; a < DIM; ++a) {
@@ -257,7 +257,7 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   Vec        target = direct ? g.nodal : g.nodal_local;
   if (!direct) PetscCall(VecZeroEntries(g.nodal_local));
   PetscCall(VecGetArray(target, &nodal));
-  P2GKernel kernel{sim, what, nodal, vel, HasExternalForces(sim)};
+  P2GKernel kernel{sim, what, nodal, vel};
   PetscCall(DispatchShape(dim, sim.shape, kernel));
   PetscCall(VecRestoreArray(target, &nodal));
   if (!direct) PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
