@@ -125,8 +125,9 @@ struct G2PKernel {
       // grad[a][0..1] as one pair of doubles per row: the same products and sums, lane by lane (the
       // scalar form keeps 12 accumulators live in 3-D and spills)
       Pair grad01[DIM] = {};
-      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-        const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
+      auto gather = [&](PetscInt at, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+        (void)i, (void)j, (void)k; // APIC only: the node position
+        const PetscScalar *nv = vel + at + vf * 2 * DIM;
         const Pair         d01 = {dN[0], dN[1]};
         for (int a = 0; a < DIM; ++a) {
           if constexpr (DV) dv[a] += N * (nv[DIM + a] - nv[a]);
@@ -137,7 +138,7 @@ struct G2PKernel {
           }
         }
         if constexpr (XPIC) {
-          const PetscScalar *sv = star + index(i, j, k) * vdof + vf * 2 * DIM;
+          const PetscScalar *sv = star + at + vf * 2 * DIM;
           for (int a = 0; a < DIM; ++a) vs[a] += N * sv[a];
         }
         if constexpr (APIC && S != ShapeType::Linear) {
@@ -150,7 +151,10 @@ struct G2PKernel {
               D[a][b] += N * dx[a] * dx[b];
             }
         }
-      });
+      };
+      if constexpr (APIC && S != ShapeType::Linear)
+        ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { gather(index(i, j, k) * vdof, i, j, k, N, dN); });
+      else ForEachLocalNode(st, index, vdof, [&](PetscInt at, PetscReal N, const PetscReal dN[]) { gather(at, 0, 0, 0, N, dN); });
       if constexpr (GRAD)
         for (int a = 0; a < DIM; ++a) grad[a][0] = grad01[a][0], grad[a][1] = grad01[a][1];
       (void)B;

@@ -1,6 +1,7 @@
 // Flat index of a node in the ghosted local arrays of the node DMDAs (petsc.md 5.2).
 #pragma once
 #include "../simulation.hpp"
+#include "shape.hpp"
 
 namespace burst {
 
@@ -15,5 +16,46 @@ struct LocalNodeIndex {
   }
   inline PetscInt operator()(PetscInt i, PetscInt j, PetscInt k) const { return ((k - gxs[2]) * gxm[1] + (j - gxs[1])) * gxm[0] + (i - gxs[0]); }
 };
+
+// ForEachNode for the transfers: f(at, N, dN[DIM]) with at = index(i, j, k) * scale, the node's
+// first entry in a ghosted local array of `scale` values per node. The flat index is a sum of one
+// offset per direction, formed once per particle instead of a product per node (the same integers).
+template <int DIM, ShapeType S, class Fn>
+inline void ForEachLocalNode(const Stencil<DIM, S> &st, const LocalNodeIndex &index, PetscInt scale, Fn &&f)
+{
+  constexpr int NS = Stencil<DIM, S>::NS;
+  PetscInt      offset[3][NS] = {};
+  for (int d = 0; d < DIM; ++d) {
+    const PetscInt step = d == 0 ? scale : (d == 1 ? index.gxm[0] * scale : index.gxm[0] * index.gxm[1] * scale);
+    for (int a = 0; a < NS; ++a) offset[d][a] = (st.idx[d][a] - index.gxs[d]) * step;
+  }
+  if constexpr (DIM == 2) ForEachStencilNode(st, [&](int a, int b, int, PetscReal N, const PetscReal dN[]) { f(offset[0][a] + offset[1][b], N, dN); });
+  else {
+    // ForEachStencilNode's loops (same products, same order), with the x-y offsets beside the x-y
+    // weight products
+    using St               = Stencil<DIM, S>;
+    constexpr bool trimmed = St::kTrimmed;
+    const int      lo[3]   = {trimmed ? st.lo[0] : 0, trimmed ? st.lo[1] : 0, trimmed ? st.lo[DIM - 1] : 0};
+    const int      end[3]  = {trimmed ? st.hi[0] + 1 : NS, trimmed ? st.hi[1] + 1 : NS, trimmed ? st.hi[DIM - 1] + 1 : NS};
+    PetscReal      ww[NS][NS], dww[NS][NS], wdw[NS][NS];
+    PetscInt       oxy[NS][NS];
+    for (int b = lo[1]; b < end[1]; ++b)
+      for (int a = lo[0]; a < end[0]; ++a) {
+        ww[b][a]  = st.w[0][a] * st.w[1][b];
+        dww[b][a] = st.dw[0][a] * st.w[1][b];
+        wdw[b][a] = st.w[0][a] * st.dw[1][b];
+        oxy[b][a] = offset[0][a] + offset[1][b];
+      }
+    for (int c = lo[2]; c < end[2]; ++c) {
+      const PetscReal wc = st.w[DIM - 1][c], dwc = st.dw[DIM - 1][c];
+      const PetscInt  oz = offset[DIM - 1][c];
+      for (int b = lo[1]; b < end[1]; ++b)
+        for (int a = lo[0]; a < end[0]; ++a) {
+          const PetscReal dN[3] = {dww[b][a] * wc, wdw[b][a] * wc, ww[b][a] * dwc};
+          f(oxy[b][a] + oz, ww[b][a] * wc, dN);
+        }
+    }
+  }
+}
 
 } // namespace burst

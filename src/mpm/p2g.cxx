@@ -133,8 +133,8 @@ struct P2GKernel {
         // costs the deformable particles more than the rigid ones save)
         auto scatter = [&](auto deformable_p) {
           constexpr bool body = decltype(deformable_p)::value, do_force_p = do_force && body, do_mom_p = do_mom && body;
-          ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-            PetscScalar *node = nodal + index(i, j, k) * dof + vf * stride;
+          auto add = [&](PetscScalar *node, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+            (void)i, (void)j, (void)k; // APIC only: the node position
             if constexpr (do_mass) {
               node[0] += N * mp;
               if (nvf > 1)
@@ -170,7 +170,10 @@ struct P2GKernel {
               }
             }
             if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
-          });
+          };
+          if constexpr (APIC && body)
+            ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { add(nodal + index(i, j, k) * dof + vf * stride, i, j, k, N, dN); });
+          else ForEachLocalNode(st, index, dof, [&](PetscInt at, PetscReal N, const PetscReal dN[]) { add(nodal + at + vf * stride, 0, 0, 0, N, dN); });
         };
         if (deformable) scatter(std::true_type{});
         else if (do_mass) scatter(std::false_type{});
@@ -199,8 +202,8 @@ struct P2GKernel {
       return;
     }
     PetscReal dv[DIM] = {}, vnew[DIM] = {};
-    ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) {
-      const PetscScalar *nv = vel + index(i, j, k) * vdof + vf * 2 * DIM;
+    ForEachLocalNode(st, index, vdof, [&](PetscInt at, PetscReal N, const PetscReal[]) {
+      const PetscScalar *nv = vel + at + vf * 2 * DIM;
       for (int a = 0; a < DIM; ++a) {
         dv[a] += N * (nv[DIM + a] - nv[a]);
         vnew[a] += N * nv[DIM + a];

@@ -64,25 +64,28 @@ inline void LinearWeights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscRea
 }
 
 // GIMP weight of a node at signed distance d = x_p - x_I for a particle of half-width lp <= h/2:
-// the hat function averaged over the particle domain [x_p - lp, x_p + lp].
-inline void GimpWeight(PetscReal d, PetscReal h, PetscReal lp, PetscReal &w, PetscReal &dw)
+// the hat function averaged over the particle domain [x_p - lp, x_p + lp]. inv_h = 1/h and
+// inv_hlp = 1/(h lp), formed once per particle and direction (no division per node).
+inline void GimpWeight(PetscReal d, PetscReal h, PetscReal inv_h, PetscReal lp, PetscReal inv_hlp, PetscReal &w, PetscReal &dw)
 {
   const PetscReal ad = std::fabs(d), s = d < 0 ? -1.0 : 1.0;
   if (ad < lp) {
-    w  = 1.0 - (d * d + lp * lp) / (2.0 * h * lp);
-    dw = -d / (h * lp);
+    w  = 1.0 - 0.5 * (d * d + lp * lp) * inv_hlp;
+    dw = -d * inv_hlp;
   } else if (ad < h - lp) {
-    w  = 1.0 - ad / h;
-    dw = -s / h;
+    w  = 1.0 - ad * inv_h;
+    dw = -s * inv_h;
   } else if (ad < h + lp) {
     const PetscReal t = h + lp - ad;
-    w                 = t * t / (4.0 * h * lp);
-    dw                = -s * t / (2.0 * h * lp);
+    w                 = 0.25 * t * t * inv_hlp;
+    dw                = -0.5 * s * t * inv_hlp;
   } else {
     w  = 0.0;
     dw = 0.0;
   }
 }
+
+inline void GimpWeight(PetscReal d, PetscReal h, PetscReal lp, PetscReal &w, PetscReal &dw) { GimpWeight(d, h, 1 / h, lp, 1 / (h * lp), w, dw); }
 
 // Moves the weight of a node outside the grid onto the two nearest inside nodes (see the header).
 inline void ExtrapolateWallNodes(const Axis &a, PetscInt nearest, PetscInt idx[], PetscReal w[], PetscReal dw[])
@@ -109,9 +112,10 @@ inline void GimpWeights1D(const Axis &a, PetscReal x, PetscReal lp, PetscInt idx
 {
   const PetscReal xi      = (x - a.origin) / a.h;
   const PetscInt  nearest = (PetscInt)std::floor(xi + 0.5);
+  const PetscReal inv_h = 1 / a.h, inv_hlp = inv_h / lp;
   for (int k = 0; k < 3; ++k) {
     const PetscInt node = nearest - 1 + k;
-    GimpWeight(x - (a.origin + node * a.h), a.h, lp, w[k], dw[k]);
+    GimpWeight(x - (a.origin + node * a.h), a.h, inv_h, lp, inv_hlp, w[k], dw[k]);
   }
   ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
@@ -206,9 +210,10 @@ struct StencilCache {
 };
 
 // Visit every node of the tensor-product support (GIMP: the live nodes, see Stencil), in the same
-// order: f(i, j, k, N, dN[DIM]).
+// order, by its position in the stencil: f(a, b, c, N, dN[DIM]) for node (idx[0][a], idx[1][b],
+// idx[2][c]) (c = 0 in 2-D).
 template <int DIM, ShapeType S, class Fn>
-inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
+inline void ForEachStencilNode(const Stencil<DIM, S> &st, Fn &&f)
 {
   using St                 = Stencil<DIM, S>;
   constexpr int  NS        = St::NS;
@@ -220,7 +225,7 @@ inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
       for (int a = lo[0]; a < end[0]; ++a) {
         const PetscReal N     = st.w[0][a] * st.w[1][b];
         const PetscReal dN[2] = {st.dw[0][a] * st.w[1][b], st.w[0][a] * st.dw[1][b]};
-        f(st.idx[0][a], st.idx[1][b], (PetscInt)0, N, dN);
+        f(a, b, 0, N, dN);
       }
   } else {
     // the x-y products of the weights, shared by the NS planes in z (same products, same bits)
@@ -236,9 +241,16 @@ inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
         for (int a = lo[0]; a < end[0]; ++a) {
           const PetscReal N     = ww[b][a] * st.w[2][c];
           const PetscReal dN[3] = {dww[b][a] * st.w[2][c], wdw[b][a] * st.w[2][c], ww[b][a] * st.dw[2][c]};
-          f(st.idx[0][a], st.idx[1][b], st.idx[2][c], N, dN);
+          f(a, b, c, N, dN);
         }
   }
+}
+
+// The same visit by node indices: f(i, j, k, N, dN[DIM]) (k = 0 in 2-D).
+template <int DIM, ShapeType S, class Fn>
+inline void ForEachNode(const Stencil<DIM, S> &st, Fn &&f)
+{
+  ForEachStencilNode(st, [&](int a, int b, int c, PetscReal N, const PetscReal dN[]) { f(st.idx[0][a], st.idx[1][b], DIM == 3 ? st.idx[DIM - 1][c] : 0, N, dN); });
 }
 
 // Calls f.template operator()<DIM, S>() for the runtime (dim, shape) pair: the one switch that turns
