@@ -107,16 +107,38 @@ inline void ExtrapolateWallNodes(const Axis &a, PetscInt nearest, PetscInt idx[]
   for (int k = 0; k < 3; ++k) idx[k] = ClampNode(nearest - 1 + k, a.nodes);
 }
 
+// floor(x) as an integer: truncation, corrected below zero (no libm call without SSE4.1).
+inline PetscInt FloorToInt(PetscReal x)
+{
+  const PetscInt t = (PetscInt)x;
+  return t - (x < (PetscReal)t ? 1 : 0);
+}
+
 // GIMP: nodes nearest-1 .. nearest+1. lp is the particle half-width in this direction.
+// GimpWeight's three branches in closed form, with clamps instead of branches (a particle's position
+// against lp is random, so the branches mispredict). The particle domain [ad - lp, ad + lp] of a node
+// at distance ad:
+//   outer nodes (ad >= h/2 >= lp): the hat's slope 1 - s/h, cut at s = h; the overlap of the domain
+//     with [0, h] has length t = clamp(h + lp - ad, 0, 2 lp), so
+//     N = t (h + lp - ad - t/2) / (2 h lp), dN/d(ad) = -t / (2 h lp);
+//   middle node (ad <= h/2): the hat 1 - |s|/h; the part of the domain below s = 0 has length
+//     m = max(lp - ad, 0), so N = 1 - ad/h - m^2 / (2 h lp), dN/d(ad) = -(lp - m) / (h lp).
+// Each reduces to GimpWeight's piece in its range (t = 2 lp: linear; 0 < t < 2 lp: the tail; t = 0:
+// exactly zero, so the trimmed stencils drop the same nodes).
 inline void GimpWeights1D(const Axis &a, PetscReal x, PetscReal lp, PetscInt idx[], PetscReal w[], PetscReal dw[])
 {
-  const PetscReal xi      = (x - a.origin) / a.h;
-  const PetscInt  nearest = (PetscInt)std::floor(xi + 0.5);
-  const PetscReal inv_h = 1 / a.h, inv_hlp = inv_h / lp;
-  for (int k = 0; k < 3; ++k) {
-    const PetscInt node = nearest - 1 + k;
-    GimpWeight(x - (a.origin + node * a.h), a.h, inv_h, lp, inv_hlp, w[k], dw[k]);
-  }
+  const PetscReal h = a.h, inv_h = 1 / h, inv_2hlp = 0.5 * inv_h / lp;
+  const PetscInt  nearest = FloorToInt((x - a.origin) * inv_h + 0.5);
+  const PetscReal d0 = x - (a.origin + (nearest - 1) * h), d1 = x - (a.origin + nearest * h), d2 = x - (a.origin + (nearest + 1) * h);
+  const PetscReal u0 = h + lp - d0, u2 = h + lp + d2; // d0 > 0 > d2
+  const PetscReal t0 = PetscMin(PetscMax(u0, 0.0), 2 * lp), t2 = PetscMin(PetscMax(u2, 0.0), 2 * lp);
+  w[0]               = t0 * (u0 - 0.5 * t0) * inv_2hlp;
+  dw[0]              = -t0 * inv_2hlp;
+  w[2]               = t2 * (u2 - 0.5 * t2) * inv_2hlp;
+  dw[2]              = t2 * inv_2hlp;
+  const PetscReal ad = std::fabs(d1), m = PetscMax(lp - ad, 0.0);
+  w[1]               = 1 - ad * inv_h - m * m * inv_2hlp;
+  dw[1]              = -2 * std::copysign(lp - m, d1) * inv_2hlp;
   ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
 

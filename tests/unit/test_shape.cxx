@@ -521,6 +521,39 @@ TEST(Shape, GimpSmallWidthIsLinearHat)
   EXPECT_LE(err_dw, 1e-8);
 }
 
+// GimpWeights1D's closed form (clamps, no branches) against GimpWeight's three pieces node by node:
+// 20,000 random positions away from the walls, lp from 1e-3 h (cpGIMP's lower clamp) to h/2; the
+// nodes beyond h + lp must be exactly zero in both (the trimmed stencils drop them).
+TEST(Shape, GimpClosedFormMatchesPieces)
+{
+  std::mt19937_64                        rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Axis                             a = kAxes[0];
+  double                                 err_w = 0, err_dw = 0;
+  int                                    zeros = 0, zero_mismatch = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const double x  = a.origin + a.h * (2 + (a.nodes - 5) * u(rng));
+    const double lp = a.h * (n % 2 ? 0.5 * u(rng) + 1e-3 : (n % 4 ? 0.5 : 0.25)); // random, the h/2 clamp, uGIMP at 2 ppc
+    PetscInt     idx[3];
+    PetscReal    w[3], dw[3];
+    GimpWeights1D(a, x, lp, idx, w, dw);
+    for (int k = 0; k < 3; ++k) {
+      PetscReal wp, dwp;
+      GimpWeight(x - NodeX(a, idx[k]), a.h, lp, wp, dwp);
+      err_w  = std::max(err_w, std::fabs(w[k] - wp));
+      err_dw = std::max(err_dw, a.h * std::fabs(dw[k] - dwp));
+      zeros += wp == 0 && dwp == 0;
+      zero_mismatch += (wp == 0 && dwp == 0) != (w[k] == 0 && dw[k] == 0);
+    }
+  }
+  Report("GIMP closed form vs pieces: max |N - N_pieces|", err_w, 1e-14, "GimpWeight (Bardenhagen & Kober 2004)");
+  Report("GIMP closed form vs pieces: max h |dN - dN_pieces|", err_dw, 1e-14, "GimpWeight");
+  EXPECT_LE(err_w, 1e-14);
+  EXPECT_LE(err_dw, 1e-14);
+  EXPECT_GT(zeros, 5000); // the zero case is exercised
+  EXPECT_EQ(zero_mismatch, 0);
+}
+
 // cpGIMP is uGIMP with lp_d = lp0_d |F_dd| clamped to [1e-3 h, h/2] (Wallstedt & Guilkey 2008, as
 // documented in shape.hpp): stretching F_xx = 3 with lp0 = h/4 hits the h/2 clamp, F_yy = 0.6 gives
 // 0.15 h, and F_zz = 1 leaves lp0.
