@@ -107,6 +107,10 @@ struct Grid {
   PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.1, balance_plastic_weight = 2.0;
   PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
   Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
+  // Nodes that can hold mass in step `reached_step`, per ghosted local node (p2g.cxx: the P2G of the
+  // masses marks them): the grid updates skip the others without reading their sums.
+  std::vector<unsigned char> reached;
+  PetscInt                   reached_step = -1;
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 

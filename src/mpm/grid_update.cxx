@@ -111,14 +111,18 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(g.nodal, &nodal));
   PetscCall(VecGetArray(g.velocity, &vel));
-  PetscInt l = 0;
+  // the nodes no particle reaches this step (p2g.cxx) are empty without a look at their sums
+  const unsigned char *reached = g.reached_step == sim.step && !g.reached.empty() ? g.reached.data() : nullptr;
+  const LocalNodeIndex index(g);
+  PetscInt             l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
         PetscScalar *vout = vel + l * vdof;
         { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
           bool empty = true;
-          for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
+          if (!reached || reached[index(i, j, k)])
+            for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
           if (empty) {
             for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
             continue;

@@ -25,6 +25,7 @@ struct P2GKernel {
   P2GRequest         what;
   PetscScalar       *nodal;
   const PetscScalar *vel = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
+  unsigned char     *reached = nullptr; // the P2G of the masses: marks each particle's first stencil node
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
@@ -109,6 +110,7 @@ struct P2GKernel {
       for (PetscInt p = 0; p < n; ++p) {
         Stencil<DIM, S> &st = stencils[p];
         if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+        if constexpr (MASS) reached[index(st.idx[0][0], st.idx[1][0], DIM == 3 ? st.idx[DIM - 1][0] : 0)] = 1;
         const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
         const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
         const PetscReal *xp = x + DIM * p;
@@ -218,6 +220,45 @@ struct P2GKernel {
 };
 } // namespace
 
+// From each particle's first stencil node (marked by the kernel) to every node its stencil can
+// reach: the next NS - 1 nodes in each direction. Owned nodes within NS - 1 of a face with ghost
+// nodes are marked whole: the neighbour's particles add to them through the ghost sum.
+static PetscErrorCode SpreadReached(Simulation &sim)
+{
+  Grid          &g      = sim.grid;
+  const PetscInt spread = ShapeGhostWidth(sim.shape), n[3] = {g.gxm[0], g.gxm[1], g.dim == 3 ? g.gxm[2] : 1};
+  const PetscInt step[3] = {1, n[0], n[0] * n[1]};
+  unsigned char *r       = g.reached.data();
+  PetscInt       xs[3], xm[3];
+  PetscFunctionBeginUser;
+  for (PetscInt d = 0; d < g.dim; ++d) { // node i takes the marks of i - 1 .. i - spread: descending i reads unspread marks
+    const PetscInt outer = g.dim == 3 && d < 2 ? n[2] * (d == 0 ? n[1] : 1) : (d == 0 ? n[1] : 1);
+    for (PetscInt o = 0; o < outer; ++o) {
+      unsigned char *base = r + o * step[d] * n[d];
+      for (PetscInt i = n[d] - 1; i > 0; --i)
+        for (PetscInt back = 1; back <= spread && back <= i; ++back) {
+          unsigned char *to = base + i * step[d], *from = base + (i - back) * step[d];
+          for (PetscInt e = 0; e < step[d]; ++e) to[e] |= from[e];
+        }
+    }
+  }
+  PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  for (PetscInt d = 0; d < g.dim; ++d) {
+    PetscInt lo[3] = {0, 0, 0}, hi[3] = {n[0], n[1], n[2]};
+    const PetscInt own_lo = xs[d] - g.gxs[d], own_hi = own_lo + xm[d]; // owned planes [own_lo, own_hi)
+    for (int side = 0; side < 2; ++side) {
+      if (side == 0 ? own_lo == 0 : own_hi == n[d]) continue; // no ghost nodes on this side
+      lo[d] = side == 0 ? own_lo : PetscMax(own_hi - spread, own_lo);
+      hi[d] = side == 0 ? PetscMin(own_lo + spread, own_hi) : own_hi;
+      for (PetscInt k = lo[2]; k < hi[2]; ++k)
+        for (PetscInt j = lo[1]; j < hi[1]; ++j)
+          for (PetscInt i = lo[0]; i < hi[0]; ++i) r[i + j * step[1] + k * step[2]] = 1;
+    }
+  }
+  g.reached_step = sim.step;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 // The requested sums of every particle (vel: the remap) into the nodal vector.
 static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscScalar *vel)
 {
@@ -261,8 +302,13 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   if (!direct) PetscCall(VecZeroEntries(g.nodal_local));
   PetscCall(VecGetArray(target, &nodal));
   P2GKernel kernel{sim, what, nodal, vel};
+  if (what.mass) {
+    g.reached.assign((size_t)g.gxm[0] * g.gxm[1] * g.gxm[2], 0);
+    kernel.reached = g.reached.data();
+  }
   PetscCall(DispatchShape(dim, sim.shape, kernel));
   PetscCall(VecRestoreArray(target, &nodal));
+  if (what.mass) PetscCall(SpreadReached(sim));
   if (!direct) PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
