@@ -105,11 +105,7 @@ struct G2PKernel {
         // no gather; L = 0 and F, V stay as they are.
         const PetscReal *v_r = sim.rigid_velocity;
         if (what.velocity) {
-          PetscReal *vp = v + DIM * p;
-          for (int a = 0; a < DIM; ++a) {
-            if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_r[a]);
-            vp[a] = v_r[a];
-          }
+          SetParticleVelocity<DIM>(v + DIM * p, v_r, external ? fext + DIM * p : nullptr, dt, work);
           if constexpr (APIC)
             for (int a = 0; a < 9; ++a) affine[9 * p + a] = 0;
         }
@@ -180,12 +176,10 @@ struct G2PKernel {
       }
       if (what.velocity) {
         PetscReal *vp = v + DIM * p;
-        for (int a = 0; a < DIM; ++a) {
-          // XPIC(m): v_p = S v* + S (v_new - v_old), v* = [I - (I - S+S)^m] v_old on the grid
-          const PetscReal v_new = APIC ? vnew[a] : (XPIC ? vs[a] + dv[a] : flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a]);
-          if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
-          vp[a] = v_new;
-        }
+        PetscReal  v_new[DIM];
+        // XPIC(m): v_p = S v* + S (v_new - v_old), v* = [I - (I - S+S)^m] v_old on the grid
+        for (int a = 0; a < DIM; ++a) v_new[a] = APIC ? vnew[a] : (XPIC ? vs[a] + dv[a] : FlipBlend(flip, vp[a], dv[a], vnew[a]));
+        SetParticleVelocity<DIM>(vp, v_new, external ? fext + DIM * p : nullptr, dt, work);
       }
       if (what.position)
         for (int a = 0; a < DIM; ++a) x[DIM * p + a] += dt * vnew[a];

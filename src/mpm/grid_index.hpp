@@ -17,6 +17,19 @@ struct LocalNodeIndex {
   inline PetscInt operator()(PetscInt i, PetscInt j, PetscInt k) const { return ((k - gxs[2]) * gxm[1] + (j - gxs[1])) * gxm[0] + (i - gxs[0]); }
 };
 
+// G2P's velocity update of one particle, shared by GridToParticles and MUSL's remap: v_p <- v_new
+// (the FLIP/PIC blend, or a rigid body's prescribed velocity) and the work of the external force over
+// the step, f_ext . (v_n + v_{n+1})/2 dt (fext_p: the particle's force, null without loads).
+inline PetscReal FlipBlend(PetscReal flip, PetscReal v_particle, PetscReal dv_grid, PetscReal v_grid) { return flip * (v_particle + dv_grid) + (1 - flip) * v_grid; }
+template <int DIM>
+inline void SetParticleVelocity(PetscReal vp[], const PetscReal v_new[], const PetscReal *fext_p, PetscReal dt, PetscReal &work)
+{
+  for (int a = 0; a < DIM; ++a) {
+    if (fext_p) work += 0.5 * dt * fext_p[a] * (vp[a] + v_new[a]);
+    vp[a] = v_new[a];
+  }
+}
+
 // ForEachNode for the transfers: f(at, N, dN[DIM]) with at = index(i, j, k) * scale, the node's
 // first entry in a ghosted local array of `scale` values per node. The flat index is a sum of one
 // offset per direction, formed once per particle instead of a product per node (the same integers).

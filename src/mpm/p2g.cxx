@@ -188,19 +188,15 @@ struct P2GKernel {
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  // G2P's velocity update of particle p (the FLIP/PIC blend; a rigid particle takes the body's
-  // velocity), the same operations in the same order as GridToParticles' velocity pass. fext:
-  // null without loads (no external work).
+  // G2P's velocity gather and update of particle p (FlipBlend, SetParticleVelocity: the same as
+  // GridToParticles' velocity pass). fext: null without loads (no external work).
   template <int DIM, ShapeType S>
   void RemapVelocity(const Stencil<DIM, S> &st, PetscInt p, PetscInt vf, const PetscInt *material, const LocalNodeIndex &index, PetscInt vdof, PetscReal flip, PetscReal dt, const PetscReal *fext, PetscReal *v, PetscReal &work) const
   {
-    const bool external = fext != nullptr;
-    PetscReal *vp       = v + DIM * p;
+    PetscReal       *vp     = v + DIM * p;
+    const PetscReal *fext_p = fext ? fext + DIM * p : nullptr;
     if (material && material[p] == sim.rigid_material) {
-      for (int a = 0; a < DIM; ++a) {
-        if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + sim.rigid_velocity[a]);
-        vp[a] = sim.rigid_velocity[a];
-      }
+      SetParticleVelocity<DIM>(vp, sim.rigid_velocity, fext_p, dt, work);
       return;
     }
     PetscReal dv[DIM] = {}, vnew[DIM] = {};
@@ -211,11 +207,9 @@ struct P2GKernel {
         vnew[a] += N * nv[DIM + a];
       }
     });
-    for (int a = 0; a < DIM; ++a) {
-      const PetscReal v_new = flip * (vp[a] + dv[a]) + (1 - flip) * vnew[a];
-      if (external) work += 0.5 * dt * fext[DIM * p + a] * (vp[a] + v_new);
-      vp[a] = v_new;
-    }
+    PetscReal v_new[DIM];
+    for (int a = 0; a < DIM; ++a) v_new[a] = FlipBlend(flip, vp[a], dv[a], vnew[a]);
+    SetParticleVelocity<DIM>(vp, v_new, fext_p, dt, work);
   }
 };
 } // namespace
