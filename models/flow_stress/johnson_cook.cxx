@@ -19,6 +19,9 @@ private:
   // Last (T, T_m) and its thermal factor and derivative (Evaluate is called point by point, so a
   // one-entry cache hits on every iteration of a return after the first; NaN: empty).
   mutable PetscReal cached_T_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_Tm_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_thermal_ = 1, cached_d_thermal_ = 0;
+  // The rate factor at zero plastic rate (every yield test and elastic point: the smooth floor gives
+  // the floor itself), for the (min_rate, rate0, C) it was computed with (NaN: empty).
+  mutable PetscReal cached_floor_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_C_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_floor_rate_ = 1;
 
 public:
 
@@ -28,10 +31,23 @@ public:
     const PetscReal power  = eps > 0 ? std::pow(eps, n) : 0;
     const PetscReal strain = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
-    PetscReal       slope;
-    const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-    const PetscReal rate      = 1 + C * std::log(effective / rate0);
-    const PetscReal d_rate    = C / effective * slope;
+    PetscReal       rate, d_rate;
+    if (x.plastic_strain_rate == 0) { // (the yield test of every point): the floor's rate factor, kept; slope 0
+      if (!(min_rate == cached_floor_ && rate0 == cached_rate0_ && C == cached_C_)) {
+        PetscReal slope;
+        cached_floor_rate_ = 1 + C * std::log(SmoothRateFloor(0.0, min_rate, &slope) / rate0);
+        cached_floor_      = min_rate;
+        cached_rate0_      = rate0;
+        cached_C_          = C;
+      }
+      rate   = cached_floor_rate_;
+      d_rate = 0;
+    } else {
+      PetscReal       slope;
+      const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
+      rate                      = 1 + C * std::log(effective / rate0);
+      d_rate                    = C / effective * slope;
+    }
     // The thermal factor depends on T and T_m only, which a return mapping holds fixed over its
     // iterations: computed once per point and reused (the same bits as recomputing it).
     if (!(x.temperature == cached_T_ && x.melt_temperature == cached_Tm_)) {
