@@ -23,12 +23,61 @@ private:
   // the floor itself), for the (min_rate, rate0, C) it was computed with (NaN: empty).
   mutable PetscReal cached_floor_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_C_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_floor_rate_ = 1;
 
+  // Series continuation of eps^n and ln(rate) from the last values computed with libm (the anchors):
+  // a return's Newton iterates and line-search trials move little once near the root, where
+  // eps^n = a^n (1 + x)^n, x = (eps - a)/a, and ln r = ln b + ln(1 + y), y = (r - b)/b, by their
+  // Taylor series to x^kSeriesTerms (|x|, |y| <= kSeriesRange = 2^-7: the first term left out is
+  // below 1e-19 relative, so each value is the libm one to a few ulp; the anchor is always a libm
+  // value, so the error does not accumulate). A far point calls pow/log and becomes the anchor.
+  // Every return starts a point with its yield test at delta_strain = 0, which drops the anchors:
+  // a point's values never depend on the point evaluated before it (the same on any rank count).
+  static constexpr int       kSeriesTerms = 8;
+  static constexpr PetscReal kSeriesRange = 0.0078125;
+  mutable PetscReal          anchor_eps_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_power_ = 0, anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
+  mutable PetscReal          anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_log_ = 0;
+  mutable PetscReal          binomial_[kSeriesTerms + 1] = {}; // n choose k, for anchor_n_
+
+  // eps^n (eps > 0)
+  inline PetscReal Power(PetscReal eps) const
+  {
+    const PetscReal x = (eps - anchor_eps_) / anchor_eps_;
+    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) {
+      PetscReal sum = binomial_[kSeriesTerms];
+      for (int k = kSeriesTerms - 1; k >= 0; --k) sum = binomial_[k] + x * sum;
+      return anchor_power_ * sum;
+    }
+    if (n != anchor_n_) {
+      binomial_[0] = 1;
+      for (int k = 1; k <= kSeriesTerms; ++k) binomial_[k] = binomial_[k - 1] * (n - (k - 1)) / k;
+      anchor_n_ = n;
+    }
+    anchor_eps_   = eps;
+    anchor_power_ = std::pow(eps, n);
+    return anchor_power_;
+  }
+
+  // ln(r / rate0) (r > 0)
+  inline PetscReal LogRate(PetscReal r) const
+  {
+    const PetscReal y = (r - anchor_rate_) / anchor_rate_;
+    if (rate0 == anchor_rate0_ && std::fabs(y) <= kSeriesRange) { // ln(1 + y) = y (1 - y/2 + y^2/3 - ...)
+      PetscReal sum = 1.0 / kSeriesTerms;
+      for (int k = kSeriesTerms - 1; k >= 1; --k) sum = 1.0 / k - y * sum;
+      return anchor_log_ + y * sum;
+    }
+    anchor_rate_  = r;
+    anchor_rate0_ = rate0;
+    anchor_log_   = std::log(r / rate0);
+    return anchor_log_;
+  }
+
 public:
 
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
+    if (x.delta_strain == 0) anchor_eps_ = anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(); // a new point (see Power)
     const PetscReal eps    = x.plastic_strain > 0 ? x.plastic_strain : 0;
-    const PetscReal power  = eps > 0 ? std::pow(eps, n) : 0;
+    const PetscReal power  = eps > 0 ? Power(eps) : 0;
     const PetscReal strain = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
     PetscReal       rate, d_rate;
@@ -45,7 +94,7 @@ public:
     } else {
       PetscReal       slope;
       const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-      rate                      = 1 + C * std::log(effective / rate0);
+      rate                      = 1 + C * LogRate(effective);
       d_rate                    = C / effective * slope;
     }
     // The thermal factor depends on T and T_m only, which a return mapping holds fixed over its
