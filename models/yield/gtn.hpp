@@ -418,7 +418,7 @@ inline bool SolveCoupled(const Flow &flow, const Chunk &c, int k, const GTNParam
     return x.Phi * x.Phi + r2 * r2 + r3 * r3;
   };
   auto converged = [&](const CoupledState &x) { return std::fabs(x.Phi) <= tol && std::fabs(x.R2) <= tol * x.R2_scale && std::fabs(x.R3) <= inner_tol * x.W; };
-  st = CoupledState();
+  st.dv = st.dq = st.de = 0; // (EvaluateCoupled writes every other member before it is read)
   if (warm && !WarmStart(flow, c, k, g, P, dv_lo, dv_hi, dq_bound, st)) return false;
   if (!EvaluateCoupled(flow, c, k, g, P, st)) return false;
   // the iterate and the line search's trial alternate between st and spare (no state copies per
@@ -527,6 +527,8 @@ inline bool SolveAlongTrialNormal(const Flow &flow, const Chunk &c, int k, const
 template <class Flow>
 PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, PetscReal tol, PetscInt max_it)
 {
+  gtn::State        st; // the solvers' states, reused from point to point (each solver starts its own)
+  gtn::CoupledState cs;
   for (int k = 0; k < c.n; ++k) {
     PetscReal *s  = c.deviator[k];
     PetscReal  ss = 0;
@@ -553,10 +555,8 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
     }
     const bool hydrostatic = q_trial <= gtn::kHydrostatic * y.sigma;
     gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0, &y};
-    gtn::State st;
-    bool       ok = false;
+    bool ok = false;
     if (!hydrostatic) { // the one-level Newton from the warm start, else from the trial state
-      gtn::CoupledState cs;
       ok = gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, true, cs) || gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, false, cs);
       if (ok) st.dv = cs.dv, st.dq = cs.dq, st.de = cs.de, st.sigma_m = cs.sigma_m, st.q = cs.q, st.y = cs.y, st.H = cs.H;
     }
