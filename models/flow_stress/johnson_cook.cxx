@@ -26,48 +26,52 @@ private:
   // Series continuation of eps^n and ln(rate) from the last values computed with libm (the anchors):
   // a return's Newton iterates and line-search trials move little once near the root, where
   // eps^n = a^n (1 + x)^n, x = (eps - a)/a, and ln r = ln b + ln(1 + y), y = (r - b)/b, by their
-  // Taylor series to x^kSeriesTerms (|x|, |y| <= kSeriesRange = 2^-7: the first term left out is
-  // below 1e-19 relative, so each value is the libm one to a few ulp; the anchor is always a libm
-  // value, so the error does not accumulate). A far point calls pow/log and becomes the anchor.
+  // Taylor series to x^8 (|x|, |y| <= kSeriesRange = 2^-7: the first term left out is below 1e-19
+  // relative, so each value is the libm one to a few ulp; the anchor is always a libm value, so the
+  // error does not accumulate). A far point calls pow/log and becomes the anchor. The polynomials
+  // are summed by Estrin's scheme with the anchor's inverse stored: a Newton iterate waits on this
+  // value, and a Horner chain of eight multiply-adds after a division took longer than glibc's log.
   // Every return starts a point with its yield test at delta_strain = 0, which drops the anchors:
   // a point's values never depend on the point evaluated before it (the same on any rank count).
-  static constexpr int       kSeriesTerms = 8;
   static constexpr PetscReal kSeriesRange = 0.0078125;
-  mutable PetscReal          anchor_eps_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_power_ = 0, anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
-  mutable PetscReal          anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_log_ = 0;
-  mutable PetscReal          binomial_[kSeriesTerms + 1] = {}; // n choose k, for anchor_n_
+  mutable PetscReal          anchor_eps_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_eps_inverse_ = 0, anchor_power_ = 0, anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
+  mutable PetscReal          anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_rate_inverse_ = 0, anchor_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_log_ = 0;
+  mutable PetscReal          binomial_[9] = {}; // n choose k, k = 0..8, for anchor_n_
+
+  // c0 + c1 x + ... + c8 x^8 by Estrin's scheme (a dependency chain of four multiply-adds)
+  static inline PetscReal Estrin8(const PetscReal *c, PetscReal x)
+  {
+    const PetscReal x2 = x * x, x4 = x2 * x2;
+    const PetscReal p01 = c[0] + c[1] * x, p23 = c[2] + c[3] * x, p45 = c[4] + c[5] * x, p67 = c[6] + c[7] * x;
+    return (p01 + p23 * x2) + ((p45 + p67 * x2) + c[8] * x4) * x4;
+  }
 
   // eps^n (eps > 0)
   inline PetscReal Power(PetscReal eps) const
   {
-    const PetscReal x = (eps - anchor_eps_) / anchor_eps_;
-    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) {
-      PetscReal sum = binomial_[kSeriesTerms];
-      for (int k = kSeriesTerms - 1; k >= 0; --k) sum = binomial_[k] + x * sum;
-      return anchor_power_ * sum;
-    }
+    const PetscReal x = (eps - anchor_eps_) * anchor_eps_inverse_;
+    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) return anchor_power_ * Estrin8(binomial_, x);
     if (n != anchor_n_) {
       binomial_[0] = 1;
-      for (int k = 1; k <= kSeriesTerms; ++k) binomial_[k] = binomial_[k - 1] * (n - (k - 1)) / k;
+      for (int k = 1; k <= 8; ++k) binomial_[k] = binomial_[k - 1] * (n - (k - 1)) / k;
       anchor_n_ = n;
     }
-    anchor_eps_   = eps;
-    anchor_power_ = std::pow(eps, n);
+    anchor_eps_         = eps;
+    anchor_eps_inverse_ = 1 / eps;
+    anchor_power_       = std::pow(eps, n);
     return anchor_power_;
   }
 
   // ln(r / rate0) (r > 0)
   inline PetscReal LogRate(PetscReal r) const
   {
-    const PetscReal y = (r - anchor_rate_) / anchor_rate_;
-    if (rate0 == anchor_rate0_ && std::fabs(y) <= kSeriesRange) { // ln(1 + y) = y (1 - y/2 + y^2/3 - ...)
-      PetscReal sum = 1.0 / kSeriesTerms;
-      for (int k = kSeriesTerms - 1; k >= 1; --k) sum = 1.0 / k - y * sum;
-      return anchor_log_ + y * sum;
-    }
-    anchor_rate_  = r;
-    anchor_rate0_ = rate0;
-    anchor_log_   = std::log(r / rate0);
+    static constexpr PetscReal log1p_over_y[9] = {1, -1.0 / 2, 1.0 / 3, -1.0 / 4, 1.0 / 5, -1.0 / 6, 1.0 / 7, -1.0 / 8, 1.0 / 9}; // ln(1 + y)/y
+    const PetscReal            y               = (r - anchor_rate_) * anchor_rate_inverse_;
+    if (rate0 == anchor_rate0_ && std::fabs(y) <= kSeriesRange) return anchor_log_ + y * Estrin8(log1p_over_y, y);
+    anchor_rate_         = r;
+    anchor_rate_inverse_ = 1 / r;
+    anchor_rate0_        = rate0;
+    anchor_log_          = std::log(r / rate0);
     return anchor_log_;
   }
 
