@@ -19,19 +19,88 @@ private:
   // Last (T, T_m) and its thermal factor and derivative (Evaluate is called point by point, so a
   // one-entry cache hits on every iteration of a return after the first; NaN: empty).
   mutable PetscReal cached_T_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_Tm_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_thermal_ = 1, cached_d_thermal_ = 0;
+  // The rate factor at zero plastic rate (every yield test and elastic point: the smooth floor gives
+  // the floor itself), for the (min_rate, rate0, C) it was computed with (NaN: empty).
+  mutable PetscReal cached_floor_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_C_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_floor_rate_ = 1;
+
+  // Series continuation of eps^n and ln(rate) from the last values computed with libm (the anchors):
+  // a return's Newton iterates and line-search trials move little once near the root, where
+  // eps^n = a^n (1 + x)^n, x = (eps - a)/a, and ln r = ln b + ln(1 + y), y = (r - b)/b, by their
+  // Taylor series to x^8 (|x|, |y| <= kSeriesRange = 2^-7: the first term left out is below 1e-19
+  // relative, so each value is the libm one to a few ulp; the anchor is always a libm value, so the
+  // error does not accumulate). A far point calls pow/log and becomes the anchor. The polynomials
+  // are summed by Estrin's scheme with the anchor's inverse stored: a Newton iterate waits on this
+  // value, and a Horner chain of eight multiply-adds after a division took longer than glibc's log.
+  // Every return starts a point with its yield test at delta_strain = 0, which drops the anchors:
+  // a point's values never depend on the point evaluated before it (the same on any rank count).
+  static constexpr PetscReal kSeriesRange = 0.0078125;
+  mutable PetscReal          anchor_eps_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_eps_inverse_ = 0, anchor_power_ = 0, anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
+  mutable PetscReal          anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_rate_inverse_ = 0, anchor_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_log_ = 0;
+  mutable PetscReal          binomial_[9] = {}; // n choose k, k = 0..8, for anchor_n_
+
+  // c0 + c1 x + ... + c8 x^8 by Estrin's scheme (a dependency chain of four multiply-adds)
+  static inline PetscReal Estrin8(const PetscReal *c, PetscReal x)
+  {
+    const PetscReal x2 = x * x, x4 = x2 * x2;
+    const PetscReal p01 = c[0] + c[1] * x, p23 = c[2] + c[3] * x, p45 = c[4] + c[5] * x, p67 = c[6] + c[7] * x;
+    return (p01 + p23 * x2) + ((p45 + p67 * x2) + c[8] * x4) * x4;
+  }
+
+  // eps^n (eps > 0)
+  inline PetscReal Power(PetscReal eps) const
+  {
+    const PetscReal x = (eps - anchor_eps_) * anchor_eps_inverse_;
+    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) return anchor_power_ * Estrin8(binomial_, x);
+    if (n != anchor_n_) {
+      binomial_[0] = 1;
+      for (int k = 1; k <= 8; ++k) binomial_[k] = binomial_[k - 1] * (n - (k - 1)) / k;
+      anchor_n_ = n;
+    }
+    anchor_eps_         = eps;
+    anchor_eps_inverse_ = 1 / eps;
+    anchor_power_       = std::pow(eps, n);
+    return anchor_power_;
+  }
+
+  // ln(r / rate0) (r > 0)
+  inline PetscReal LogRate(PetscReal r) const
+  {
+    static constexpr PetscReal log1p_over_y[9] = {1, -1.0 / 2, 1.0 / 3, -1.0 / 4, 1.0 / 5, -1.0 / 6, 1.0 / 7, -1.0 / 8, 1.0 / 9}; // ln(1 + y)/y
+    const PetscReal            y               = (r - anchor_rate_) * anchor_rate_inverse_;
+    if (rate0 == anchor_rate0_ && std::fabs(y) <= kSeriesRange) return anchor_log_ + y * Estrin8(log1p_over_y, y);
+    anchor_rate_         = r;
+    anchor_rate_inverse_ = 1 / r;
+    anchor_rate0_        = rate0;
+    anchor_log_          = std::log(r / rate0);
+    return anchor_log_;
+  }
 
 public:
 
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
+    if (x.delta_strain == 0) anchor_eps_ = anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(); // a new point (see Power)
     const PetscReal eps    = x.plastic_strain > 0 ? x.plastic_strain : 0;
-    const PetscReal power  = eps > 0 ? std::pow(eps, n) : 0;
+    const PetscReal power  = eps > 0 ? Power(eps) : 0;
     const PetscReal strain = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
-    PetscReal       slope;
-    const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-    const PetscReal rate      = 1 + C * std::log(effective / rate0);
-    const PetscReal d_rate    = C / effective * slope;
+    PetscReal       rate, d_rate;
+    if (x.plastic_strain_rate == 0) { // (the yield test of every point): the floor's rate factor, kept; slope 0
+      if (!(min_rate == cached_floor_ && rate0 == cached_rate0_ && C == cached_C_)) {
+        PetscReal slope;
+        cached_floor_rate_ = 1 + C * std::log(SmoothRateFloor(0.0, min_rate, &slope) / rate0);
+        cached_floor_      = min_rate;
+        cached_rate0_      = rate0;
+        cached_C_          = C;
+      }
+      rate   = cached_floor_rate_;
+      d_rate = 0;
+    } else {
+      PetscReal       slope;
+      const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
+      rate                      = 1 + C * LogRate(effective);
+      d_rate                    = C / effective * slope;
+    }
     // The thermal factor depends on T and T_m only, which a return mapping holds fixed over its
     // iterations: computed once per point and reused (the same bits as recomputing it).
     if (!(x.temperature == cached_T_ && x.melt_temperature == cached_Tm_)) {

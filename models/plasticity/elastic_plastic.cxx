@@ -457,6 +457,7 @@ public:
     c.adiabatic      = adiabatic ? 1 : 0;
     const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
     PetscReal       R_next[kChunk][9]; // R_{n+1} of the chunk's points (row-major)
+    const int       num_history = flow->NumHistory(); // the history entries the flow model uses (the others are never read)
     PetscReal       omega_old[kChunk]; // crack band: the softening at t_n (0 otherwise)
     PetscInt        p = 0;
     while (p < mp.n) {
@@ -504,7 +505,7 @@ public:
         c.plastic_strain_rate[k] = rate[q];
         c.porosity[k]            = f[q];
         c.damage[k]              = D[q];
-        for (int h = 0; h < kMaxHistory; ++h) c.history[k][h] = history[kMaxHistory * q + h];
+        for (int h = 0; h < num_history; ++h) c.history[k][h] = history[kMaxHistory * q + h];
         c.unstable[k] = 0;
       }
       // 2. state: EOS, melt, shear modulus, specific heat
@@ -513,15 +514,14 @@ public:
       shear->Evaluate(c);
       specific_heat->Evaluate(c);
       // 3. trial deviator; melted points carry no deviator
-      for (int k = 0; k < c.n; ++k) {
-        Mat3Map s(c.deviator[k]);
+      for (int k = 0; k < c.n; ++k) { // (plain arrays: the Eigen temporaries were not inlined)
+        PetscReal *s = c.deviator[k];
         if (c.temperature[k] >= c.melt_temperature[k]) {
-          s.setZero();
+          for (int a = 0; a < 9; ++a) s[a] = 0;
           continue;
         }
-        Mat3 Ddev = Mat3Map(c.D_hat[k]);
-        Ddev.diagonal().array() -= c.trace_D[k] / 3;
-        s += 2 * c.shear_modulus[k] * dt * Ddev;
+        const PetscReal *Dh = c.D_hat[k], third = c.trace_D[k] / 3, factor = 2 * c.shear_modulus[k] * dt;
+        for (int a = 0; a < 9; ++a) s[a] += factor * (a % 4 ? Dh[a] : Dh[a] - third); // 2 mu dt dev(D_hat)
       }
       // 4. yield test and return mapping (flow model inlined). A failed point with a response keeps
       // at most its pressure: it takes no trial deviator and its voids no longer grow, so it goes
@@ -615,8 +615,8 @@ public:
           t_fail[q]    = mp.time;
           newly_failed = true;
         }
-        Mat3 s_hat = Mat3Map(c.deviator[k]);
-        s_hat.diagonal().array() -= c.pressure[k];
+        PetscReal s_hat[9]; // s - p I
+        for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 ? c.deviator[k][a] : c.deviator[k][a] - c.pressure[k];
         if (failed[q] && failure_response != FailureResponse::None) {
           // the response: drop what the failed point cannot carry; count the elastic energy that goes
           // (q^2/(6 mu) + p^2/(2 K) per unit volume for the dropped parts)
@@ -625,8 +625,7 @@ public:
           const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
           if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
           if (newly_failed && !crack_band) released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release (crack band: counted below)
-          s_hat.setZero();
-          if (keep_pressure) s_hat.diagonal().array() -= p;
+          for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 || !keep_pressure ? 0.0 : 0.0 - p; // (as zeroing, then subtracting p)
           Mat3Map(c.deviator[k]).setZero();
           c.equivalent_stress[k] = 0;
         }
@@ -634,19 +633,19 @@ public:
         // work is the band's dissipation
         const bool softening = crack_band && reg.limit[q] > 0 && (!failed[q] || newly_failed);
         if (crack_band && !failed[q]) {
-          s_hat *= 1 - omega; // the softened stress; the particle state stays the intact one
+          for (int a = 0; a < 9; ++a) s_hat[a] *= 1 - omega; // the softened stress; the particle state stays the intact one
           reg.omega[q] = omega;
         }
         const PetscReal elastic_old = elastic[q];
         {
-          const PetscReal p = -s_hat.trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
-          Mat3            dev = s_hat;
-          dev.diagonal().array() += p;
-          elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * dev.squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
+          const PetscReal p = -Mat3CMap(s_hat).trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
+          PetscReal       dev[9];
+          for (int a = 0; a < 9; ++a) dev[a] = a % 4 ? s_hat[a] : s_hat[a] + p;
+          elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * Mat3CMap(dev).squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
         }
         PetscReal *sigma = mp.stress + 9 * q, sigma_old[9];
         for (int a = 0; a < 9; ++a) sigma_old[a] = sigma[a];
-        RotateFromFrame(R_next[k], s_hat.data(), sigma);
+        RotateFromFrame(R_next[k], s_hat, sigma);
         for (int a = 0; a < 9; ++a) R[9 * q + a] = R_next[k][a];
         const PetscReal stress_work = StressWork(sigma_old, sigma, mp.L + 9 * q, mp.volume[q], dt);
         mp.internal_energy[q] += stress_work;
@@ -671,7 +670,7 @@ public:
         D[q]              = c.damage[k];
         sigma_f[q]        = c.flow_stress[k];
         unstable[q]       = c.unstable[k];
-        for (int h = 0; h < kMaxHistory; ++h) history[kMaxHistory * q + h] = c.history[k][h];
+        for (int h = 0; h < num_history; ++h) history[kMaxHistory * q + h] = c.history[k][h];
       }
     }
     PetscCall(fields.RestoreAll());

@@ -35,11 +35,12 @@ namespace burst {
 // Returns false when tr S I - S is not positive definite (U not positive definite near R0: far from
 // the polar solution) or the iteration does not settle; the caller then falls back to PolarRotation.
 // Row-major arrays, written out in scalars: this runs once per particle and step (the Eigen
-// products with their temporaries cost about twice as many instructions).
-inline bool PolarRotationWarm(const PetscReal *F, const PetscReal *R0, PetscReal *R)
+// products with their temporaries cost about twice as many instructions). R must not overlap R0.
+inline bool PolarRotationWarm(const PetscReal *F, const PetscReal *__restrict R0, PetscReal *__restrict R)
 {
-  PetscReal Rk[9];
-  for (int i = 0; i < 9; ++i) Rk[i] = R0[i];
+  // R_k is R0, then one of two buffers in turn (no copies); the last product goes to R
+  PetscReal        buffer[2][9];
+  const PetscReal *Rk = R0;
   for (int it = 0; it < 8; ++it) {
     PetscReal A[9]; // R_k^T F
     for (int i = 0; i < 3; ++i)
@@ -63,12 +64,11 @@ inline bool PolarRotationWarm(const PetscReal *F, const PetscReal *R0, PetscReal
                             s * (h2 + h0 * h1), 1 + s * -(h2 * h2 + h0 * h0), s * (-h0 + h1 * h2),  //
                             s * (-h1 + h0 * h2), s * (h0 + h1 * h2), 1 + s * -(h1 * h1 + h0 * h0)};
     const bool      last = ww < 1e-18; // |w| < 1e-9: the next correction, of order |w|^2, is round-off
-    PetscReal      *out  = last ? R : Rk;
-    PetscReal       RQ[9];
+    PetscReal      *out  = last ? R : buffer[it % 2];
     for (int i = 0; i < 3; ++i)
-      for (int j = 0; j < 3; ++j) RQ[3 * i + j] = Rk[3 * i] * Q[j] + Rk[3 * i + 1] * Q[3 + j] + Rk[3 * i + 2] * Q[6 + j];
-    for (int i = 0; i < 9; ++i) out[i] = RQ[i];
+      for (int j = 0; j < 3; ++j) out[3 * i + j] = Rk[3 * i] * Q[j] + Rk[3 * i + 1] * Q[3 + j] + Rk[3 * i + 2] * Q[6 + j];
     if (last) return true;
+    Rk = out;
   }
   return false;
 }

@@ -68,6 +68,7 @@
 #include "flow_point.hpp"
 #include "von_mises.hpp"
 #include <cmath>
+#include <utility>
 
 namespace burst {
 
@@ -417,41 +418,50 @@ inline bool SolveCoupled(const Flow &flow, const Chunk &c, int k, const GTNParam
     return x.Phi * x.Phi + r2 * r2 + r3 * r3;
   };
   auto converged = [&](const CoupledState &x) { return std::fabs(x.Phi) <= tol && std::fabs(x.R2) <= tol * x.R2_scale && std::fabs(x.R3) <= inner_tol * x.W; };
-  st = CoupledState();
+  st.dv = st.dq = st.de = 0; // (EvaluateCoupled writes every other member before it is read)
   if (warm && !WarmStart(flow, c, k, g, P, dv_lo, dv_hi, dq_bound, st)) return false;
   if (!EvaluateCoupled(flow, c, k, g, P, st)) return false;
+  // the iterate and the line search's trial alternate between st and spare (no state copies per
+  // iterate); the result is copied to st at most once
+  CoupledState  spare;
+  CoupledState *cur = &st, *next = &spare;
+  auto          finish = [&](bool ok) {
+    if (cur != &st) st = *cur;
+    return ok;
+  };
   for (PetscInt it = 0; it < max_it; ++it) {
-    if (converged(st)) return true;
-    const PetscReal r3_e = st.J[2][2];
+    const CoupledState &now = *cur; // the current iterate
+    if (converged(now)) return finish(true);
+    const PetscReal r3_e = now.J[2][2];
     if (!(r3_e > 0)) return false;
-    const PetscReal e_0 = -st.R3 / r3_e, e_v = -st.J[2][0] / r3_e, e_q = -st.J[2][1] / r3_e; // d(de) = e_0 + e_v d(dv) + e_q d(dq)
-    const PetscReal a00 = st.J[0][0] + st.J[0][2] * e_v, a01 = st.J[0][1] + st.J[0][2] * e_q;
-    const PetscReal a10 = st.J[1][0] + st.J[1][2] * e_v, a11 = st.J[1][1] + st.J[1][2] * e_q;
-    const PetscReal r0 = st.Phi + st.J[0][2] * e_0, r1 = st.R2 + st.J[1][2] * e_0;
+    const PetscReal e_0 = -now.R3 / r3_e, e_v = -now.J[2][0] / r3_e, e_q = -now.J[2][1] / r3_e; // d(de) = e_0 + e_v d(dv) + e_q d(dq)
+    const PetscReal a00 = now.J[0][0] + now.J[0][2] * e_v, a01 = now.J[0][1] + now.J[0][2] * e_q;
+    const PetscReal a10 = now.J[1][0] + now.J[1][2] * e_v, a11 = now.J[1][1] + now.J[1][2] * e_q;
+    const PetscReal r0 = now.Phi + now.J[0][2] * e_0, r1 = now.R2 + now.J[1][2] * e_0;
     const PetscReal det = a00 * a11 - a01 * a10;
     if (det == 0 || !std::isfinite(det)) return false;
     const PetscReal step_v = -(a11 * r0 - a01 * r1) / det;
     const PetscReal step_q = -(-a10 * r0 + a00 * r1) / det;
     const PetscReal step_e = e_0 + e_v * step_v + e_q * step_q;
     // projected backtracking line search on the merit; de >= 0 (a step across 0 halves de instead)
-    const PetscReal m0       = merit(st);
-    CoupledState    trial;
+    const PetscReal m0       = merit(now);
+    CoupledState   &trial    = *next;
     PetscReal       lambda   = 1;
     bool            accepted = false;
     for (int ls = 0; ls < 40; ++ls, lambda *= 0.5) {
-      trial.dv           = PetscMin(PetscMax(st.dv + lambda * step_v, dv_lo), dv_hi);
-      trial.dq           = PetscMin(PetscMax(st.dq + lambda * step_q, 0.0), dq_bound);
-      const PetscReal de = st.de + lambda * step_e;
-      trial.de           = de > 0 ? de : 0.5 * st.de;
+      trial.dv           = PetscMin(PetscMax(now.dv + lambda * step_v, dv_lo), dv_hi);
+      trial.dq           = PetscMin(PetscMax(now.dq + lambda * step_q, 0.0), dq_bound);
+      const PetscReal de = now.de + lambda * step_e;
+      trial.de           = de > 0 ? de : 0.5 * now.de;
       if (EvaluateCoupled(flow, c, k, g, P, trial) && (merit(trial) < m0 || converged(trial))) {
         accepted = true;
         break;
       }
     }
     if (!accepted) return false;
-    st = trial;
+    std::swap(cur, next);
   }
-  return converged(st);
+  return finish(converged(*cur));
 }
 
 // Last resort when the 2x2 Newton stalls: the flow direction is frozen at the trial state
@@ -517,6 +527,8 @@ inline bool SolveAlongTrialNormal(const Flow &flow, const Chunk &c, int k, const
 template <class Flow>
 PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, PetscReal tol, PetscInt max_it)
 {
+  gtn::State        st; // the solvers' states, reused from point to point (each solver starts its own)
+  gtn::CoupledState cs;
   for (int k = 0; k < c.n; ++k) {
     PetscReal *s  = c.deviator[k];
     PetscReal  ss = 0;
@@ -543,10 +555,8 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
     }
     const bool hydrostatic = q_trial <= gtn::kHydrostatic * y.sigma;
     gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0, &y};
-    gtn::State st;
-    bool       ok = false;
+    bool ok = false;
     if (!hydrostatic) { // the one-level Newton from the warm start, else from the trial state
-      gtn::CoupledState cs;
       ok = gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, true, cs) || gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, false, cs);
       if (ok) st.dv = cs.dv, st.dq = cs.dq, st.de = cs.de, st.sigma_m = cs.sigma_m, st.q = cs.q, st.y = cs.y, st.H = cs.H;
     }
