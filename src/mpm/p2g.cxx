@@ -103,6 +103,7 @@ struct P2GKernel {
     bool             fill;
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     constexpr bool   do_mass = MASS, do_mom = MOM, do_force = FORCE;
+    const bool       deformable_gradients = sim.TwoDeformableFields();
     // external forces as a compile-time switch for the whole loop: without loads (most scenes) the
     // force is the internal one alone
     auto particles = [&](auto external) {
@@ -133,13 +134,15 @@ struct P2GKernel {
         (void)hoop;
         // deformable or rigid as a compile-time switch per particle (a runtime test in the node loop
         // costs the deformable particles more than the rigid ones save)
-        auto scatter = [&](auto deformable_p) {
-          constexpr bool body = decltype(deformable_p)::value, do_force_p = do_force && body, do_mom_p = do_mom && body;
+        // The mass gradients: the rigid field's gives the rigid contact's normal; a deformable field's
+        // is read only by the contact between two deformable fields (grid_update.cxx)
+        auto scatter = [&](auto deformable_p, auto gradient_p) {
+          constexpr bool body = decltype(deformable_p)::value, do_force_p = do_force && body, do_mom_p = do_mom && body, do_gradient = decltype(gradient_p)::value;
           auto add = [&](PetscScalar *node, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
             (void)i, (void)j, (void)k; // APIC only: the node position
             if constexpr (do_mass) {
               node[0] += N * mp;
-              if (nvf > 1)
+              if (do_gradient && nvf > 1)
                 for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
             }
             if constexpr (APIC && body) {
@@ -177,8 +180,10 @@ struct P2GKernel {
             ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { add(nodal + index(i, j, k) * dof + vf * stride, i, j, k, N, dN); });
           else ForEachLocalNode(st, index, dof, [&](PetscInt at, PetscReal N, const PetscReal dN[]) { add(nodal + at + vf * stride, 0, 0, 0, N, dN); });
         };
-        if (deformable) scatter(std::true_type{});
-        else if (do_mass) scatter(std::false_type{});
+        if (!deformable) {
+          if (do_mass) scatter(std::false_type{}, std::true_type{});
+        } else if (deformable_gradients) scatter(std::true_type{}, std::true_type{});
+        else scatter(std::true_type{}, std::false_type{});
       }
     };
     if (HasExternalForces(sim)) particles(std::true_type{});
