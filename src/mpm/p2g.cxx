@@ -231,7 +231,7 @@ static PetscErrorCode SpreadReached(Simulation &sim)
   PetscInt       xs[3], xm[3];
   PetscFunctionBeginUser;
   for (PetscInt d = 0; d < g.dim; ++d) { // node i takes the marks of i - 1 .. i - spread: descending i reads unspread marks
-    const PetscInt outer = g.dim == 3 && d < 2 ? n[2] * (d == 0 ? n[1] : 1) : (d == 0 ? n[1] : 1);
+    const PetscInt outer = n[0] * n[1] * n[2] / (step[d] * n[d]); // lines (d = 0) or planes above direction d
     for (PetscInt o = 0; o < outer; ++o) {
       unsigned char *base = r + o * step[d] * n[d];
       for (PetscInt i = n[d] - 1; i > 0; --i)

@@ -64,28 +64,26 @@ inline void LinearWeights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscRea
 }
 
 // GIMP weight of a node at signed distance d = x_p - x_I for a particle of half-width lp <= h/2:
-// the hat function averaged over the particle domain [x_p - lp, x_p + lp]. inv_h = 1/h and
-// inv_hlp = 1/(h lp), formed once per particle and direction (no division per node).
-inline void GimpWeight(PetscReal d, PetscReal h, PetscReal inv_h, PetscReal lp, PetscReal inv_hlp, PetscReal &w, PetscReal &dw)
+// the hat function averaged over the particle domain [x_p - lp, x_p + lp], piece by piece (the
+// reference for GimpWeights1D's closed form; unit tests).
+inline void GimpWeight(PetscReal d, PetscReal h, PetscReal lp, PetscReal &w, PetscReal &dw)
 {
   const PetscReal ad = std::fabs(d), s = d < 0 ? -1.0 : 1.0;
   if (ad < lp) {
-    w  = 1.0 - 0.5 * (d * d + lp * lp) * inv_hlp;
-    dw = -d * inv_hlp;
+    w  = 1.0 - (d * d + lp * lp) / (2.0 * h * lp);
+    dw = -d / (h * lp);
   } else if (ad < h - lp) {
-    w  = 1.0 - ad * inv_h;
-    dw = -s * inv_h;
+    w  = 1.0 - ad / h;
+    dw = -s / h;
   } else if (ad < h + lp) {
     const PetscReal t = h + lp - ad;
-    w                 = 0.25 * t * t * inv_hlp;
-    dw                = -0.5 * s * t * inv_hlp;
+    w                 = t * t / (4.0 * h * lp);
+    dw                = -s * t / (2.0 * h * lp);
   } else {
     w  = 0.0;
     dw = 0.0;
   }
 }
-
-inline void GimpWeight(PetscReal d, PetscReal h, PetscReal lp, PetscReal &w, PetscReal &dw) { GimpWeight(d, h, 1 / h, lp, 1 / (h * lp), w, dw); }
 
 // Moves the weight of a node outside the grid onto the two nearest inside nodes (see the header).
 inline void ExtrapolateWallNodes(const Axis &a, PetscInt nearest, PetscInt idx[], PetscReal w[], PetscReal dw[])
