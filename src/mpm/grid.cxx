@@ -26,6 +26,8 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
 {
   Grid &g = sim.grid;
   PetscFunctionBeginUser;
+  g.reached.clear(); // the marks of another layout (p2g.cxx): the new vectors are zeroed whole first
+  g.reached_step = -1;
   const PetscInt width = ShapeGhostWidth(sim.shape);
   // No ghost nodes outside the domain: every support stays inside [0, M-1] (shape.hpp moves the
   // weight of a node beyond a wall onto the inside nodes), so on one rank the local vectors are the
