@@ -477,10 +477,11 @@ public:
         }
         // D_hat = (R_old^T D R_old + R_new^T D R_new)/2, D = sym L
         const PetscReal D_lab[9] = {L[0], 0.5 * (L[1] + L[3]), 0.5 * (L[2] + L[6]), 0.5 * (L[3] + L[1]), L[4], 0.5 * (L[5] + L[7]), 0.5 * (L[6] + L[2]), 0.5 * (L[7] + L[5]), L[8]};
-        PetscReal      *Dh       = c.D_hat[k], D_new[9];
-        RotateToFrame(R_old, D_lab, Dh);
-        RotateToFrame(R_new, D_lab, D_new);
-        for (int a = 0; a < 9; ++a) Dh[a] = 0.5 * (Dh[a] + D_new[a]);
+        PetscReal      *Dh       = c.D_hat[k];
+        {
+          const SymmetricTensor d_old = RotatedToFrame(R_old, D_lab), d_new = RotatedToFrame(R_new, D_lab);
+          StoreSymmetric({0.5 * (d_old.xx + d_new.xx), 0.5 * (d_old.xy + d_new.xy), 0.5 * (d_old.xz + d_new.xz), 0.5 * (d_old.yy + d_new.yy), 0.5 * (d_old.yz + d_new.yz), 0.5 * (d_old.zz + d_new.zz)}, Dh);
+        }
         // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
         omega_old[k]     = crack_band && !failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
         PetscReal *sh    = c.deviator[k]; // s_n for now

@@ -89,25 +89,42 @@ namespace burst {
 // in full, then only the upper triangle of U R (or U R^T), mirrored: 45 multiplications instead of
 // 54, and the result is symmetric to the last bit. S itself need not be exactly symmetric.
 
-// out = R^T S R (out must not overlap R or S)
-inline void RotateToFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out)
+// The upper triangle (xx, xy, xz, yy, yz, zz) of a symmetric 3x3 tensor, returned by value so that
+// it stays in registers: the rotations below used to go through arrays on the stack that were
+// written in scalars and read back in pairs, and a load that spans two earlier stores waits for
+// them (no store forwarding).
+struct SymmetricTensor {
+  PetscReal xx, xy, xz, yy, yz, zz;
+};
+
+inline void StoreSymmetric(const SymmetricTensor &t, PetscReal *__restrict out)
 {
-  PetscReal U[9], o[6];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) U[3 * i + j] = R[i] * S[j] + R[3 + i] * S[3 + j] + R[6 + i] * S[6 + j];
-  for (int i = 0, n = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j, ++n) o[n] = U[3 * i] * R[j] + U[3 * i + 1] * R[3 + j] + U[3 * i + 2] * R[6 + j];
-  out[0] = o[0], out[1] = out[3] = o[1], out[2] = out[6] = o[2], out[4] = o[3], out[5] = out[7] = o[4], out[8] = o[5];
+  out[0] = t.xx, out[1] = out[3] = t.xy, out[2] = out[6] = t.xz, out[4] = t.yy, out[5] = out[7] = t.yz, out[8] = t.zz;
 }
 
-// out = R S R^T (out must not overlap R or S)
-inline void RotateFromFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out)
+// R^T S R
+inline SymmetricTensor RotatedToFrame(const PetscReal *__restrict R, const PetscReal *__restrict S)
 {
-  PetscReal U[9], o[6];
+  PetscReal U[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) U[3 * i + j] = R[3 * i] * S[j] + R[3 * i + 1] * S[3 + j] + R[3 * i + 2] * S[6 + j];
-  for (int i = 0, n = 0; i < 3; ++i)
-    for (int j = i; j < 3; ++j, ++n) o[n] = U[3 * i] * R[3 * j] + U[3 * i + 1] * R[3 * j + 1] + U[3 * i + 2] * R[3 * j + 2];
-  out[0] = o[0], out[1] = out[3] = o[1], out[2] = out[6] = o[2], out[4] = o[3], out[5] = out[7] = o[4], out[8] = o[5];
+    for (int j = 0; j < 3; ++j) U[i][j] = R[i] * S[j] + R[3 + i] * S[3 + j] + R[6 + i] * S[6 + j];
+  auto o = [&](int i, int j) { return U[i][0] * R[j] + U[i][1] * R[3 + j] + U[i][2] * R[6 + j]; };
+  return {o(0, 0), o(0, 1), o(0, 2), o(1, 1), o(1, 2), o(2, 2)};
 }
+
+// R S R^T
+inline SymmetricTensor RotatedFromFrame(const PetscReal *__restrict R, const PetscReal *__restrict S)
+{
+  PetscReal U[3][3];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) U[i][j] = R[3 * i] * S[j] + R[3 * i + 1] * S[3 + j] + R[3 * i + 2] * S[6 + j];
+  auto o = [&](int i, int j) { return U[i][0] * R[3 * j] + U[i][1] * R[3 * j + 1] + U[i][2] * R[3 * j + 2]; };
+  return {o(0, 0), o(0, 1), o(0, 2), o(1, 1), o(1, 2), o(2, 2)};
+}
+
+// out = R^T S R (out must not overlap R or S)
+inline void RotateToFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out) { StoreSymmetric(RotatedToFrame(R, S), out); }
+
+// out = R S R^T (out must not overlap R or S)
+inline void RotateFromFrame(const PetscReal *__restrict R, const PetscReal *__restrict S, PetscReal *__restrict out) { StoreSymmetric(RotatedFromFrame(R, S), out); }
 } // namespace burst
