@@ -205,10 +205,13 @@ struct G2PKernel {
             continue;
           }
         }
-        Mat3Map    Fp(Fq);
         const Mat3 increment = exponential ? Expm(Mat3CMap(Lp) * dt) : Mat3(Mat3::Identity() + Mat3CMap(Lp) * dt);
-        Fp                   = increment * Mat3(Fp);
-        vol[p]               = vol0[p] * Fp.determinant();
+        // F <- increment F written out: Eigen's product was a call per particle; its sums are
+        // a_i0 b_0j + (a_i1 b_1j + a_i2 b_2j), kept here (the same bits)
+        const PetscReal f[9] = {Fq[0], Fq[1], Fq[2], Fq[3], Fq[4], Fq[5], Fq[6], Fq[7], Fq[8]};
+        for (int a = 0; a < 3; ++a)
+          for (int b = 0; b < 3; ++b) Fq[3 * a + b] = increment(a, 0) * f[b] + (increment(a, 1) * f[3 + b] + increment(a, 2) * f[6 + b]);
+        vol[p] = vol0[p] * Mat3CMap(Fq).determinant();
       }
     }
     sim.diag.external_work += work;
