@@ -99,6 +99,7 @@ struct Grid {
   // Local ghosted box of the node DMDA.
   PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
   Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
+  VecScatter ghost_sums = nullptr; // the ghost nodes of nodal_local onto their owners' entries of nodal (null without ghost nodes; p2g.cxx)
   Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
   // Load balance (grid.cxx): ownership ranges from the particle work, at start-up and every
   // balance_interval steps (0: start-up only).

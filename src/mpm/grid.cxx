@@ -22,6 +22,39 @@ static std::string RangesString(const std::vector<PetscInt> &r)
 
 // The node DMDA, its velocity twin, the vectors and the ownership tables; with ranges (one vector of
 // node counts per direction), on the same process grid with those ownership ranges.
+// The scatter that adds the ghost nodes of the local nodal vector to their owners' entries of the
+// global one: the ghost part of DMLocalToGlobal(ADD_VALUES). The P2G adds the owned part itself,
+// only at the nodes its particles reach (p2g.cxx); DMLocalToGlobal would add every owned entry of the
+// local vector, a pass over the whole grid per transfer.
+static PetscErrorCode CreateGhostSums(Grid &g)
+{
+  PetscInt               xs[3], xm[3], dof;
+  ISLocalToGlobalMapping ltog;
+  std::vector<PetscInt>  local, global;
+  IS                     from, to;
+  PetscFunctionBeginUser;
+  PetscCall(VecScatterDestroy(&g.ghost_sums));
+  PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &dof, nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscInt l = 0;
+  for (PetscInt k = g.gxs[2]; k < g.gxs[2] + g.gxm[2]; ++k)
+    for (PetscInt j = g.gxs[1]; j < g.gxs[1] + g.gxm[1]; ++j)
+      for (PetscInt i = g.gxs[0]; i < g.gxs[0] + g.gxm[0]; ++i, ++l) {
+        const bool owned = i >= xs[0] && i < xs[0] + xm[0] && j >= xs[1] && j < xs[1] + xm[1] && k >= xs[2] && k < xs[2] + xm[2];
+        if (!owned) local.push_back(l);
+      }
+  if (local.empty()) PetscFunctionReturn(PETSC_SUCCESS); // one rank: the P2G sums into the global vector
+  global.resize(local.size());
+  PetscCall(DMGetLocalToGlobalMapping(g.da_nodes, &ltog));
+  PetscCall(ISLocalToGlobalMappingApplyBlock(ltog, (PetscInt)local.size(), local.data(), global.data()));
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, dof, (PetscInt)local.size(), local.data(), PETSC_COPY_VALUES, &from));
+  PetscCall(ISCreateBlock(PETSC_COMM_SELF, dof, (PetscInt)global.size(), global.data(), PETSC_COPY_VALUES, &to));
+  PetscCall(VecScatterCreate(g.nodal_local, from, g.nodal, to, &g.ghost_sums));
+  PetscCall(ISDestroy(&from));
+  PetscCall(ISDestroy(&to));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt> *ranges)
 {
   Grid &g = sim.grid;
@@ -81,6 +114,7 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   }
   PetscCall(PetscObjectSetName((PetscObject)g.nodal, "nodal"));
   PetscCall(PetscObjectSetName((PetscObject)g.velocity, "grid_velocity"));
+  PetscCall(CreateGhostSums(g));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -236,6 +270,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
   if (!same) {
     PetscCall(VecDestroy(&g.nodal));
     PetscCall(VecDestroy(&g.nodal_local));
+    PetscCall(VecScatterDestroy(&g.ghost_sums));
     PetscCall(VecDestroy(&g.velocity));
     PetscCall(VecDestroy(&g.velocity_local));
     PetscCall(DMDestroy(&g.da_velocity));

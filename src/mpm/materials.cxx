@@ -47,6 +47,7 @@ Simulation::~Simulation()
 {
   VecDestroy(&grid.nodal);
   VecDestroy(&grid.nodal_local);
+  VecScatterDestroy(&grid.ghost_sums);
   VecDestroy(&grid.velocity);
   VecDestroy(&grid.velocity_local);
   VecDestroy(&grid.xpic_star);

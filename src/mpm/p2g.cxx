@@ -351,7 +351,30 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   PetscCall(DispatchShape(dim, sim.shape, kernel));
   PetscCall(VecRestoreArray(target, &nodal));
   if (what.mass) PetscCall(SpreadReached(sim));
-  if (!direct) PetscCall(DMLocalToGlobal(g.da_nodes, g.nodal_local, ADD_VALUES, g.nodal));
+  if (!direct) {
+    // DMLocalToGlobal(ADD_VALUES) in two parts: the owned nodes that the particles reach added here
+    // (the others hold zeros), then the ghost nodes through the scatter
+    PetscCheck(g.ghost_sums, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The ghost-node scatter of the nodal sums is missing");
+    const PetscScalar *local;
+    PetscCall(VecGetArrayRead(g.nodal_local, &local));
+    PetscCall(VecGetArray(g.nodal, &nodal));
+    const unsigned char *marks = g.reached_step == sim.step && g.reached.size() == ghosted_nodes ? g.reached.data() : nullptr;
+    const LocalNodeIndex index(g);
+    PetscInt             l = 0;
+    for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+      for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
+        for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
+          const PetscInt at = index(i, j, k);
+          if (marks && !marks[at]) continue;
+          const PetscScalar *from = local + at * dof;
+          PetscScalar       *to   = nodal + l * dof;
+          for (PetscInt z = 0; z < nzero; ++z) to[zero[z]] += from[zero[z]]; // the requested dofs (the local vector's others are zero)
+        }
+    PetscCall(VecRestoreArray(g.nodal, &nodal));
+    PetscCall(VecRestoreArrayRead(g.nodal_local, &local));
+    PetscCall(VecScatterBegin(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(VecScatterEnd(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
