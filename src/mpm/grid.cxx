@@ -20,8 +20,6 @@ static std::string RangesString(const std::vector<PetscInt> &r)
   return s;
 }
 
-// The node DMDA, its velocity twin, the vectors and the ownership tables; with ranges (one vector of
-// node counts per direction), on the same process grid with those ownership ranges.
 // The scatter that adds the ghost nodes of the local nodal vector to their owners' entries of the
 // global one: the ghost part of DMLocalToGlobal(ADD_VALUES). The P2G adds the owned part itself,
 // only at the nodes its particles reach (p2g.cxx); DMLocalToGlobal would add every owned entry of the
@@ -55,6 +53,8 @@ static PetscErrorCode CreateGhostSums(Grid &g)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The node DMDA, its velocity twin, the vectors and the ownership tables; with ranges (one vector of
+// node counts per direction), on the same process grid with those ownership ranges.
 static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt> *ranges)
 {
   Grid &g = sim.grid;

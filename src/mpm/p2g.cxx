@@ -1,6 +1,8 @@
 // Particles to grid: mass, momentum and force (internal -V sigma grad N plus external N f_ext) summed
-// into the ghosted local nodal vector, then one DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2); on a
-// rank without ghost nodes (one rank) straight into the global vector.
+// into the ghosted local nodal vector, then onto the global one (the owned nodes the particles reach
+// added in place, the ghost nodes through Grid::ghost_sums: DMLocalToGlobal(ADD_VALUES) without its
+// pass over the whole grid; petsc.md 5.2); on a rank without ghost nodes (one rank) straight into the
+// global vector.
 //
 // Axisymmetric (-axisymmetric; x = r, y = z, masses and volumes per radian): the weak form of
 // div sigma in cylindrical coordinates adds the hoop term to the radial force,
@@ -315,9 +317,10 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   PetscCall(VecGetLocalSize(g.nodal_local, &nghosted));
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   // Without ghost nodes (one rank) the ghosted box is the owned box, in the same order: the
-  // particles sum straight into the global vector (no local zeroing, no LocalToGlobal; the same sums
-  // in the same order). Otherwise into the ghosted local vector, then one
-  // DMLocalToGlobal(ADD_VALUES) (petsc.md 5.2).
+  // particles sum straight into the global vector (no local vector; the same sums in the same
+  // order). Otherwise into the ghosted local vector, whose owned part is then added in place and
+  // whose ghost nodes go to their owners through Grid::ghost_sums (DMLocalToGlobal(ADD_VALUES) in two
+  // parts, petsc.md 5.2).
   const bool     direct = nlocal == nghosted;
   const size_t   ghosted_nodes = (size_t)g.gxm[0] * g.gxm[1] * g.gxm[2];
   const bool     marked = g.reached.size() == ghosted_nodes && (what.mass || g.reached_step == sim.step);
