@@ -33,6 +33,7 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscClassId id;
   PetscCall(PetscClassIdRegister("burst", &id));
   PetscCall(PetscLogEventRegister("MPM_P2G", id, &sim.ev_p2g));
+  PetscCall(PetscLogEventRegister("MPM_GhostSums", id, &sim.ev_ghost_sums)); // (inside MPM_P2G and MPM_Remap, several ranks: the sums onto the owners, with the wait for the other ranks)
   PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.ev_grid));
   PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.ev_g2p));
   PetscCall(PetscLogEventRegister("MPM_XPIC", id, &sim.ev_xpic));

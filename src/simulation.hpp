@@ -208,7 +208,7 @@ struct Simulation {
 
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
-  PetscLogEvent ev_p2g, ev_grid, ev_g2p, ev_xpic, ev_remap, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads;
+  PetscLogEvent ev_p2g, ev_ghost_sums, ev_grid, ev_g2p, ev_xpic, ev_remap, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads;
   PetscLogEvent ev_sort = 0, ev_balance = 0; // registered by CreateSwarm and CreateGrid
   PetscInt      sort_interval = 0;           // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
 

@@ -358,6 +358,7 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     // DMLocalToGlobal(ADD_VALUES) in two parts: the owned nodes that the particles reach added here
     // (the others hold zeros), then the ghost nodes through the scatter
     PetscCheck(g.ghost_sums, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The ghost-node scatter of the nodal sums is missing");
+    PetscCall(PetscLogEventBegin(sim.ev_ghost_sums, 0, 0, 0, 0));
     const PetscScalar *local;
     PetscCall(VecGetArrayRead(g.nodal_local, &local));
     PetscCall(VecGetArray(g.nodal, &nodal));
@@ -377,6 +378,7 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     PetscCall(VecRestoreArrayRead(g.nodal_local, &local));
     PetscCall(VecScatterBegin(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
+    PetscCall(PetscLogEventEnd(sim.ev_ghost_sums, 0, 0, 0, 0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
