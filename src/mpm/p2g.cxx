@@ -260,25 +260,34 @@ static PetscErrorCode SpreadReached(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Zeroes, at the nodes marked in `marks` (one byte per ghosted local node), the listed dofs (every
-// dof when zero is null) of a nodal array laid out over the box [xs, xs + xm): the ghosted box
-// (local vectors) or the owned box (global vectors).
-static void ZeroMarkedNodes(const Grid &g, const unsigned char *marks, PetscScalar *array, const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscInt *zero, PetscInt nzero)
+// Calls f(l, at) for each node of the box [xs, xs + xm) that `marks` marks (one byte per ghosted
+// local node; every node when marks is null): l counts the box's nodes in order (its place in an
+// array over that box), at is its ghosted local index. The box is the ghosted one (local vectors) or
+// the owned one (global vectors).
+template <class Fn>
+static void ForEachMarkedNode(const Grid &g, const unsigned char *marks, const PetscInt xs[3], const PetscInt xm[3], Fn &&f)
 {
   const LocalNodeIndex index(g);
   PetscInt             l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j) {
-      const unsigned char *row = marks + index(xs[0], j, k);
-      for (PetscInt i = 0; i < xm[0]; ++i, ++l) {
-        if (!row[i]) continue;
-        PetscScalar *node = array + l * dof;
-        if (zero)
-          for (PetscInt z = 0; z < nzero; ++z) node[zero[z]] = 0;
-        else
-          for (PetscInt z = 0; z < dof; ++z) node[z] = 0;
-      }
+      const PetscInt at = index(xs[0], j, k);
+      for (PetscInt i = 0; i < xm[0]; ++i, ++l)
+        if (!marks || marks[at + i]) f(l, at + i);
     }
+}
+
+// Zeroes the listed dofs (every dof when zero is null) of the marked nodes (every node when marks is
+// null) of a nodal array over the box [xs, xs + xm).
+static void ZeroNodes(const Grid &g, const unsigned char *marks, PetscScalar *array, const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscInt *zero, PetscInt nzero)
+{
+  ForEachMarkedNode(g, marks, xs, xm, [&](PetscInt l, PetscInt) {
+    PetscScalar *node = array + l * dof;
+    if (zero)
+      for (PetscInt z = 0; z < nzero; ++z) node[zero[z]] = 0;
+    else
+      for (PetscInt z = 0; z < dof; ++z) node[z] = 0;
+  });
 }
 
 // The requested sums of every particle (vel: the remap) into the nodal vector.
@@ -321,26 +330,22 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   // order). Otherwise into the ghosted local vector, whose owned part is then added in place and
   // whose ghost nodes go to their owners through Grid::ghost_sums (DMLocalToGlobal(ADD_VALUES) in two
   // parts, petsc.md 5.2).
-  const bool     direct = nlocal == nghosted;
-  const size_t   ghosted_nodes = (size_t)g.gxm[0] * g.gxm[1] * g.gxm[2];
-  const bool     marked = g.reached.size() == ghosted_nodes && (what.mass || g.reached_step == sim.step);
-  if (!marked) {
-    if (what.mass || nzero == dof) PetscCall(VecZeroEntries(g.nodal)); // a P2G of the masses zeroes every dof
-    else {
-      PetscCall(VecGetArray(g.nodal, &nodal));
-      for (PetscInt node = 0; node < nlocal / dof; ++node)
-        for (PetscInt z = 0; z < nzero; ++z) nodal[node * dof + zero[z]] = 0;
-      PetscCall(VecRestoreArray(g.nodal, &nodal));
-    }
-    if (!direct) PetscCall(VecZeroEntries(g.nodal_local));
-  } else {
-    const bool all = what.mass || nzero == dof;
+  const bool   direct        = nlocal == nghosted;
+  const size_t ghosted_nodes = (size_t)g.gxm[0] * g.gxm[1] * g.gxm[2];
+  // the nodes that can hold sums (null: any node, the whole vectors are zeroed)
+  const unsigned char *old_marks = g.reached.size() == ghosted_nodes && (what.mass || g.reached_step == sim.step) ? g.reached.data() : nullptr;
+  const bool           all       = what.mass || nzero == dof; // a P2G of the masses zeroes every dof
+  if (!old_marks && all) PetscCall(VecZeroEntries(g.nodal));
+  else {
     PetscCall(VecGetArray(g.nodal, &nodal));
-    ZeroMarkedNodes(g, g.reached.data(), nodal, xs, xm, dof, all ? nullptr : zero, nzero);
+    ZeroNodes(g, old_marks, nodal, xs, xm, dof, all ? nullptr : zero, nzero);
     PetscCall(VecRestoreArray(g.nodal, &nodal));
-    if (!direct) {
+  }
+  if (!direct) { // every dof of the local vector: its other dofs would be added again
+    if (!old_marks) PetscCall(VecZeroEntries(g.nodal_local));
+    else {
       PetscCall(VecGetArray(g.nodal_local, &nodal));
-      ZeroMarkedNodes(g, g.reached.data(), nodal, g.gxs, g.gxm, dof, nullptr, 0);
+      ZeroNodes(g, old_marks, nodal, g.gxs, g.gxm, dof, nullptr, 0);
       PetscCall(VecRestoreArray(g.nodal_local, &nodal));
     }
   }
@@ -362,18 +367,10 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     const PetscScalar *local;
     PetscCall(VecGetArrayRead(g.nodal_local, &local));
     PetscCall(VecGetArray(g.nodal, &nodal));
-    const unsigned char *marks = g.reached_step == sim.step && g.reached.size() == ghosted_nodes ? g.reached.data() : nullptr;
-    const LocalNodeIndex index(g);
-    PetscInt             l = 0;
-    for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
-      for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
-        for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
-          const PetscInt at = index(i, j, k);
-          if (marks && !marks[at]) continue;
-          const PetscScalar *from = local + at * dof;
-          PetscScalar       *to   = nodal + l * dof;
-          for (PetscInt z = 0; z < nzero; ++z) to[zero[z]] += from[zero[z]]; // the requested dofs (the local vector's others are zero)
-        }
+    const unsigned char *marks = g.reached_step == sim.step ? g.reached.data() : nullptr; // this step's marks (the mass P2G above, or the one before at the same positions)
+    ForEachMarkedNode(g, marks, xs, xm, [&](PetscInt l, PetscInt at) {
+      for (PetscInt z = 0; z < nzero; ++z) nodal[l * dof + zero[z]] += local[at * dof + zero[z]]; // the requested dofs (the local vector's others are zero)
+    });
     PetscCall(VecRestoreArray(g.nodal, &nodal));
     PetscCall(VecRestoreArrayRead(g.nodal_local, &local));
     PetscCall(VecScatterBegin(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
