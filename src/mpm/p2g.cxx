@@ -17,6 +17,7 @@
 // particle pass (the same operations as G2P's velocity pass followed by a momentum P2G).
 #include "grid_index.hpp"
 #include "mpm/swarm_access.hpp"
+#include <algorithm>
 #include <type_traits>
 
 namespace burst {
@@ -260,20 +261,33 @@ static PetscErrorCode SpreadReached(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Calls f(l, at) for each node of the box [xs, xs + xm) that `marks` marks (one byte per ghosted
-// local node; every node when marks is null): l counts the box's nodes in order (its place in an
-// array over that box), at is its ghosted local index. The box is the ghosted one (local vectors) or
-// the owned one (global vectors).
+// Calls f(l, at, count) for each run of consecutive marked nodes in the rows of the box
+// [xs, xs + xm) (`marks`: one byte per ghosted local node; null: every node, one run per row): l is
+// the run's first place in an array over that box, at its ghosted local index. The box is the
+// ghosted one (local vectors) or the owned one (global vectors). Runs, so that a grid the particles
+// fill is zeroed row by row like the memset it replaces.
 template <class Fn>
-static void ForEachMarkedNode(const Grid &g, const unsigned char *marks, const PetscInt xs[3], const PetscInt xm[3], Fn &&f)
+static void ForEachMarkedRun(const Grid &g, const unsigned char *marks, const PetscInt xs[3], const PetscInt xm[3], Fn &&f)
 {
   const LocalNodeIndex index(g);
   PetscInt             l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
-    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j) {
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; l += xm[0], ++j) {
       const PetscInt at = index(xs[0], j, k);
-      for (PetscInt i = 0; i < xm[0]; ++i, ++l)
-        if (!marks || marks[at + i]) f(l, at + i);
+      if (!marks) {
+        f(l, at, xm[0]);
+        continue;
+      }
+      for (PetscInt i = 0; i < xm[0];) {
+        if (!marks[at + i]) {
+          ++i;
+          continue;
+        }
+        PetscInt end = i + 1;
+        while (end < xm[0] && marks[at + end]) ++end;
+        f(l + i, at + i, end - i);
+        i = end;
+      }
     }
 }
 
@@ -281,12 +295,11 @@ static void ForEachMarkedNode(const Grid &g, const unsigned char *marks, const P
 // null) of a nodal array over the box [xs, xs + xm).
 static void ZeroNodes(const Grid &g, const unsigned char *marks, PetscScalar *array, const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscInt *zero, PetscInt nzero)
 {
-  ForEachMarkedNode(g, marks, xs, xm, [&](PetscInt l, PetscInt) {
-    PetscScalar *node = array + l * dof;
-    if (zero)
-      for (PetscInt z = 0; z < nzero; ++z) node[zero[z]] = 0;
+  ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt, PetscInt count) {
+    if (!zero) std::fill(array + l * dof, array + (l + count) * dof, 0.0);
     else
-      for (PetscInt z = 0; z < dof; ++z) node[z] = 0;
+      for (PetscInt node = l; node < l + count; ++node)
+        for (PetscInt z = 0; z < nzero; ++z) array[node * dof + zero[z]] = 0;
   });
 }
 
@@ -368,8 +381,9 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     PetscCall(VecGetArrayRead(g.nodal_local, &local));
     PetscCall(VecGetArray(g.nodal, &nodal));
     const unsigned char *marks = g.reached_step == sim.step ? g.reached.data() : nullptr; // this step's marks (the mass P2G above, or the one before at the same positions)
-    ForEachMarkedNode(g, marks, xs, xm, [&](PetscInt l, PetscInt at) {
-      for (PetscInt z = 0; z < nzero; ++z) nodal[l * dof + zero[z]] += local[at * dof + zero[z]]; // the requested dofs (the local vector's others are zero)
+    ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt at, PetscInt count) {
+      for (PetscInt node = 0; node < count; ++node)
+        for (PetscInt z = 0; z < nzero; ++z) nodal[(l + node) * dof + zero[z]] += local[(at + node) * dof + zero[z]]; // the requested dofs (the local vector's others are zero)
     });
     PetscCall(VecRestoreArray(g.nodal, &nodal));
     PetscCall(VecRestoreArrayRead(g.nodal_local, &local));
