@@ -15,10 +15,21 @@ class JohnsonCook final : public FlowStressModel<JohnsonCook> {
 public:
   PetscReal A = 0, B = 0, n = 1, C = 0, m = 1, rate0 = 1, room_temperature = 298;
 
+public:
+  // What one chain of evaluations caches (a return mapping's point): the thermal factor of its (T,
+  // T_m) and the series anchors below. The von Mises return runs two points at once, each with its
+  // own Lane, so their chains overlap and neither evicts the other's anchors (von_mises.hpp).
+  struct Lane {
+    // Last (T, T_m) and its thermal factor and derivative (a return mapping holds T and T_m fixed
+    // over its iterations, so a one-entry cache hits on every iteration after the first; NaN: empty).
+    PetscReal T = std::numeric_limits<PetscReal>::quiet_NaN(), Tm = std::numeric_limits<PetscReal>::quiet_NaN(), thermal = 1, d_thermal = 0;
+    // Series anchors (see Power and LogRate; NaN: none)
+    PetscReal eps = std::numeric_limits<PetscReal>::quiet_NaN(), eps_inverse = 0, power = 0;
+    PetscReal rate = std::numeric_limits<PetscReal>::quiet_NaN(), rate_inverse = 0, rate0 = std::numeric_limits<PetscReal>::quiet_NaN(), log = 0;
+  };
+
 private:
-  // Last (T, T_m) and its thermal factor and derivative (Evaluate is called point by point, so a
-  // one-entry cache hits on every iteration of a return after the first; NaN: empty).
-  mutable PetscReal cached_T_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_Tm_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_thermal_ = 1, cached_d_thermal_ = 0;
+  mutable Lane lane_; // the two-argument Evaluate's (GTN's returns, the point-by-point callers)
   // The rate factor at zero plastic rate (every yield test and elastic point: the smooth floor gives
   // the floor itself), for the (min_rate, rate0, C) it was computed with (NaN: empty).
   mutable PetscReal cached_floor_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_C_ = std::numeric_limits<PetscReal>::quiet_NaN(), cached_floor_rate_ = 1;
@@ -31,11 +42,11 @@ private:
   // error does not accumulate). A far point calls pow/log and becomes the anchor. The polynomials
   // are summed by Estrin's scheme with the anchor's inverse stored: a Newton iterate waits on this
   // value, and a Horner chain of eight multiply-adds after a division took longer than glibc's log.
-  // Every return starts a point with its yield test at delta_strain = 0, which drops the anchors:
-  // a point's values never depend on the point evaluated before it (the same on any rank count).
+  // Every return starts a point with its yield test at delta_strain = 0, which drops the lane's
+  // anchors: a point's values never depend on the point evaluated before it (the same on any rank
+  // count, and whichever lane runs it).
   static constexpr PetscReal kSeriesRange = 0.0078125;
-  mutable PetscReal          anchor_eps_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_eps_inverse_ = 0, anchor_power_ = 0, anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
-  mutable PetscReal          anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_rate_inverse_ = 0, anchor_rate0_ = std::numeric_limits<PetscReal>::quiet_NaN(), anchor_log_ = 0;
+  mutable PetscReal          anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
   mutable PetscReal          binomial_[9] = {}; // n choose k, k = 0..8, for anchor_n_
 
   // c0 + c1 x + ... + c8 x^8 by Estrin's scheme (a dependency chain of four multiply-adds)
@@ -47,41 +58,43 @@ private:
   }
 
   // eps^n (eps > 0)
-  inline PetscReal Power(PetscReal eps) const
+  inline PetscReal Power(PetscReal eps, Lane &lane) const
   {
-    const PetscReal x = (eps - anchor_eps_) * anchor_eps_inverse_;
-    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) return anchor_power_ * Estrin8(binomial_, x);
+    const PetscReal x = (eps - lane.eps) * lane.eps_inverse;
+    if (n == anchor_n_ && std::fabs(x) <= kSeriesRange) return lane.power * Estrin8(binomial_, x);
     if (n != anchor_n_) {
       binomial_[0] = 1;
       for (int k = 1; k <= 8; ++k) binomial_[k] = binomial_[k - 1] * (n - (k - 1)) / k;
       anchor_n_ = n;
     }
-    anchor_eps_         = eps;
-    anchor_eps_inverse_ = 1 / eps;
-    anchor_power_       = std::pow(eps, n);
-    return anchor_power_;
+    lane.eps         = eps;
+    lane.eps_inverse = 1 / eps;
+    lane.power       = std::pow(eps, n);
+    return lane.power;
   }
 
   // ln(r / rate0) (r > 0)
-  inline PetscReal LogRate(PetscReal r) const
+  inline PetscReal LogRate(PetscReal r, Lane &lane) const
   {
     static constexpr PetscReal log1p_over_y[9] = {1, -1.0 / 2, 1.0 / 3, -1.0 / 4, 1.0 / 5, -1.0 / 6, 1.0 / 7, -1.0 / 8, 1.0 / 9}; // ln(1 + y)/y
-    const PetscReal            y               = (r - anchor_rate_) * anchor_rate_inverse_;
-    if (rate0 == anchor_rate0_ && std::fabs(y) <= kSeriesRange) return anchor_log_ + y * Estrin8(log1p_over_y, y);
-    anchor_rate_         = r;
-    anchor_rate_inverse_ = 1 / r;
-    anchor_rate0_        = rate0;
-    anchor_log_          = std::log(r / rate0);
-    return anchor_log_;
+    const PetscReal            y               = (r - lane.rate) * lane.rate_inverse;
+    if (rate0 == lane.rate0 && std::fabs(y) <= kSeriesRange) return lane.log + y * Estrin8(log1p_over_y, y);
+    lane.rate         = r;
+    lane.rate_inverse = 1 / r;
+    lane.rate0        = rate0;
+    lane.log          = std::log(r / rate0);
+    return lane.log;
   }
 
 public:
 
-  inline void Evaluate(const FlowPoint &x, FlowValue &y) const
+  inline void Evaluate(const FlowPoint &x, FlowValue &y) const { Evaluate(x, y, lane_); }
+
+  inline void Evaluate(const FlowPoint &x, FlowValue &y, Lane &lane) const
   {
-    if (x.delta_strain == 0) anchor_eps_ = anchor_rate_ = std::numeric_limits<PetscReal>::quiet_NaN(); // a new point (see Power)
+    if (x.delta_strain == 0) lane.eps = lane.rate = std::numeric_limits<PetscReal>::quiet_NaN(); // a new point (see Power)
     const PetscReal eps    = x.plastic_strain > 0 ? x.plastic_strain : 0;
-    const PetscReal power  = eps > 0 ? Power(eps) : 0;
+    const PetscReal power  = eps > 0 ? Power(eps, lane) : 0;
     const PetscReal strain = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
     PetscReal       rate, d_rate;
@@ -98,24 +111,24 @@ public:
     } else {
       PetscReal       slope;
       const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-      rate                      = 1 + C * LogRate(effective);
+      rate                      = 1 + C * LogRate(effective, lane);
       d_rate                    = C / effective * slope;
     }
     // The thermal factor depends on T and T_m only, which a return mapping holds fixed over its
     // iterations: computed once per point and reused (the same bits as recomputing it).
-    if (!(x.temperature == cached_T_ && x.melt_temperature == cached_Tm_)) {
+    if (!(x.temperature == lane.T && x.melt_temperature == lane.Tm)) {
       const PetscReal homologous = (x.temperature - room_temperature) / (x.melt_temperature - room_temperature);
-      cached_thermal_ = 1, cached_d_thermal_ = 0;
-      if (homologous >= 1) cached_thermal_ = 0;
+      lane.thermal = 1, lane.d_thermal = 0;
+      if (homologous >= 1) lane.thermal = 0;
       else if (homologous > 0) {
         const PetscReal tm = std::pow(homologous, m);
-        cached_thermal_    = 1 - tm;
-        cached_d_thermal_  = -m * tm / homologous / (x.melt_temperature - room_temperature);
+        lane.thermal       = 1 - tm;
+        lane.d_thermal     = -m * tm / homologous / (x.melt_temperature - room_temperature);
       }
-      cached_T_  = x.temperature;
-      cached_Tm_ = x.melt_temperature;
+      lane.T  = x.temperature;
+      lane.Tm = x.melt_temperature;
     }
-    const PetscReal thermal = cached_thermal_, d_thermal = cached_d_thermal_;
+    const PetscReal thermal = lane.thermal, d_thermal = lane.d_thermal;
     y.sigma         = strain * rate * thermal;
     y.d_strain      = d_strain * rate * thermal;
     y.d_rate        = strain * d_rate * thermal;

@@ -416,6 +416,55 @@ TEST(GTNReturn, RandomStatesJohnsonCook)
   EXPECT_LE(worst_norm, 1e-8);
 }
 
+// The von Mises return runs two points at once (RadialReturn lanes, each with its own Johnson-Cook
+// series anchors and thermal cache): every point must come out bit for bit as when it is returned on
+// its own (a chunk of one). 16 chunks of 64 random states: elastic and plastic points mixed, q_tr up
+// to 6 sigma_f, plastic strains 0 to 0.5, warm starts from a previous plastic rate or none,
+// temperatures 298-1200 K, so the lanes finish after different iteration counts.
+TEST(VonMisesReturn, PairedLanesMatchOnePointAtATime)
+{
+  ScopedOptions opt;
+  auto          flow = JohnsonCook4340(opt, "vmlanes");
+  ASSERT_TRUE(flow);
+  ReturnSettings settings; // von Mises, tolerance 1e-10
+  std::mt19937_64 rng(2026);
+  std::uniform_real_distribution<double> U(0, 1);
+  auto c = std::make_unique<Chunk>(), one = std::make_unique<Chunk>();
+  int  plastic = 0, compared = 0, mismatches = 0;
+  for (int batch = 0; batch < 16; ++batch) {
+    c->n  = kChunk;
+    c->dt = 1e-7;
+    for (int k = 0; k < kChunk; ++k) {
+      M3 d = Deviatoric(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
+      const double qa = 6 * U(rng), eps0 = U(rng) < 0.2 ? 0.0 : 0.5 * U(rng);
+      SetPoint(*c, k, M3(d * (qa * 792e6 / Equivalent(d.data()))), 0.0, kK, kMu, 0.0, eps0, 298 + 900 * U(rng), 1793);
+      c->plastic_strain_rate[k] = U(rng) < 0.5 ? 0.0 : 1e5 * U(rng); // the warm start's previous rate
+    }
+    auto input = std::make_unique<Chunk>(*c);
+    ASSERT_EQ(flow->Return(*c, settings), 0);
+    for (int k = 0; k < kChunk; ++k) {
+      *one    = *input;
+      one->n  = 1;
+      for (int a = 0; a < 9; ++a) one->deviator[0][a] = input->deviator[k][a];
+      one->index[0] = k, one->shear_modulus[0] = input->shear_modulus[k], one->plastic_strain[0] = input->plastic_strain[k];
+      one->plastic_strain_rate[0] = input->plastic_strain_rate[k], one->temperature[0] = input->temperature[k], one->melt_temperature[0] = input->melt_temperature[k];
+      ASSERT_EQ(flow->Return(*one, settings), 0);
+      bool same = one->plastic[0] == c->plastic[k] && one->plastic_strain[0] == c->plastic_strain[k] && one->plastic_strain_rate[0] == c->plastic_strain_rate[k] &&
+                  one->delta_plastic_strain[0] == c->delta_plastic_strain[k] && one->flow_stress[0] == c->flow_stress[k] && one->hardening[0] == c->hardening[k] &&
+                  one->rate_hardening[0] == c->rate_hardening[k] && one->thermal_softening[0] == c->thermal_softening[k] && one->equivalent_stress[0] == c->equivalent_stress[k];
+      for (int a = 0; a < 9; ++a) same = same && one->deviator[0][a] == c->deviator[k][a];
+      mismatches += !same;
+      plastic += c->plastic[k];
+      ++compared;
+    }
+  }
+  std::printf("             %d points, %d plastic\n", compared, plastic);
+  Report("paired radial returns: points that differ from a return on their own", mismatches, 0, "bit for bit");
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_GT(plastic, compared / 4);
+  EXPECT_LT(plastic, compared);
+}
+
 // -------------------------------------------------------------------------------------------------
 // The elastic_plastic material on a one-point swarm (the set-up of src/mpm/point_driver.cxx).
 namespace {
