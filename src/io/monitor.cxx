@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 namespace burst {
 
@@ -272,6 +273,28 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
   const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
+  // With logging on (-log_view) and several ranks: each rank's time in the stepping phases, so a
+  // load-balance study sees which rank waits in which phase (-log_view prints only max and max/min).
+  struct Phase {
+    const char   *name;
+    PetscLogEvent event;
+  };
+  const Phase phases[] = {{"p2g", sim.ev_p2g}, {"ghost_sums", sim.ev_ghost_sums}, {"grid_update", sim.ev_grid}, {"g2p", sim.ev_g2p}, {"remap", sim.ev_remap}, {"stress", sim.ev_stress}, {"migrate", sim.ev_migrate}, {"time_step", sim.ev_dt}};
+  constexpr int       num_phases = sizeof(phases) / sizeof(phases[0]);
+  PetscBool           logging    = PETSC_FALSE;
+  std::vector<double> rank_phase_seconds; // [rank][phase], on rank 0
+  PetscCall(PetscLogIsActive(&logging));
+  if (logging && sim.size > 1) {
+    double mine[num_phases + 1];
+    for (int i = 0; i < num_phases; ++i) {
+      PetscEventPerfInfo info;
+      PetscCall(PetscLogEventGetPerfInfo(sim.stage_step, phases[i].event, &info));
+      mine[i] = info.time;
+    }
+    mine[num_phases] = sim.wall_stepping;
+    if (!sim.rank) rank_phase_seconds.resize((size_t)(num_phases + 1) * sim.size);
+    PetscCallMPI(MPI_Gather(mine, num_phases + 1, MPI_DOUBLE, rank_phase_seconds.data(), num_phases + 1, MPI_DOUBLE, 0, sim.comm));
+  }
   if (sim.rank) PetscFunctionReturn(PETSC_SUCCESS);
   if (csv) {
     std::fclose(csv);
@@ -326,6 +349,15 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
+  }
+  if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
+    s << "  \"rank_phase_seconds\": {";
+    for (int i = 0; i <= num_phases; ++i) {
+      s << (i ? ", " : "") << "\"" << (i < num_phases ? phases[i].name : "stepping") << "\": [";
+      for (int r = 0; r < sim.size; ++r) s << (r ? ", " : "") << rank_phase_seconds[(size_t)r * (num_phases + 1) + i];
+      s << "]";
+    }
+    s << "},\n";
   }
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
