@@ -101,6 +101,11 @@ struct Grid {
   Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
   VecScatter ghost_sums = nullptr; // the ghost nodes of nodal_local onto their owners' entries of nodal (null without ghost nodes; p2g.cxx)
   Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
+  VecScatter velocity_ghosts = nullptr; // the owners' velocities onto the ghost nodes of velocity_local (reverse; null without ghost nodes)
+  // Owned nodes whose velocities the last grid update (or the coupling) wrote non-zero, per owned node
+  // (grid_update.cxx): an empty node that was empty before is zero in both vectors already. Empty
+  // after a new layout: the first update writes every node.
+  std::vector<unsigned char> velocity_written;
   // Load balance (grid.cxx): ownership ranges from the particle work, at start-up and every
   // balance_interval steps (0: start-up only).
   PetscBool balance = PETSC_FALSE;
@@ -220,7 +225,8 @@ PetscErrorCode ReadRunOptions(Simulation &sim);
 PetscErrorCode CreateGrid(Simulation &sim);
 // The grid velocities [v_old, v_new] from the global vector to the ghosted local one (a no-op on a
 // rank without ghost nodes, where the two are one vector).
-PetscErrorCode GridVelocityToLocal(Grid &g);
+PetscErrorCode GridVelocityToLocal(Grid &g); // the whole owned part and the ghost nodes (DMGlobalToLocal)
+PetscErrorCode GridVelocityGhosts(Grid &g);  // the ghost nodes only (the grid update writes the owned part of both vectors)
 PetscErrorCode CreateMaterials(Simulation &sim);
 PetscErrorCode ReadLoadCurves(Simulation &sim);
 PetscErrorCode ReadGeometries(Simulation &sim);

@@ -292,6 +292,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscCall(VecGetArrayRead(ice.local, &a));
   PetscCall(VecGetArray(c.inc_global, &inc));
   PetscCall(VecGetArray(g.velocity, &vel));
+  PetscCheck((PetscInt)g.velocity_written.size() == xm[0] * xm[1] * xm[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "The coupling's increments come after a grid update on the node DMDA's layout");
   const PetscReal V = ice.CellVolume();
   PetscInt        l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
@@ -324,6 +325,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
                 if ((side == 0 ? node[e] == 0 : node[e] == g.cells[e]) && g.bc[e][side] == FaceBC::Fixed) value = 0;
             ni[d] = value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
+            if (value != 0) g.velocity_written[l] = 1;       // (the next grid update must zero it if the node is empty)
           }
           ni[dim] = weight[f] > 0 ? dT[f] / weight[f] : 0;
         }

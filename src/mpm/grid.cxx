@@ -20,20 +20,22 @@ static std::string RangesString(const std::vector<PetscInt> &r)
   return s;
 }
 
-// The scatter that adds the ghost nodes of the local nodal vector to their owners' entries of the
-// global one: the ghost part of DMLocalToGlobal(ADD_VALUES). The P2G adds the owned part itself,
-// only at the nodes its particles reach (p2g.cxx); DMLocalToGlobal would add every owned entry of the
-// local vector, a pass over the whole grid per transfer.
-static PetscErrorCode CreateGhostSums(Grid &g)
+// The scatter between the ghost nodes of a local vector of `da` and their owners' entries of the
+// global one: forward, ADD_VALUES, it is the ghost part of DMLocalToGlobal (the nodal sums: the P2G
+// adds the owned part itself, only at the nodes its particles reach, p2g.cxx, where DMLocalToGlobal
+// would add every owned entry of the local vector, a pass over the whole grid per transfer);
+// reverse, INSERT_VALUES, the ghost part of DMGlobalToLocal (the grid velocities: the grid update
+// writes the owned part of both vectors itself, grid_update.cxx). Null without ghost nodes.
+static PetscErrorCode CreateGhostScatter(const Grid &g, DM da, Vec local_vec, Vec global_vec, VecScatter *scatter)
 {
   PetscInt               xs[3], xm[3], dof;
   ISLocalToGlobalMapping ltog;
   std::vector<PetscInt>  local, global;
   IS                     from, to;
   PetscFunctionBeginUser;
-  PetscCall(VecScatterDestroy(&g.ghost_sums));
-  PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
-  PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &dof, nullptr, nullptr, nullptr, nullptr, nullptr));
+  PetscCall(VecScatterDestroy(scatter));
+  PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(DMDAGetInfo(da, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, &dof, nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscInt l = 0;
   for (PetscInt k = g.gxs[2]; k < g.gxs[2] + g.gxm[2]; ++k)
     for (PetscInt j = g.gxs[1]; j < g.gxs[1] + g.gxm[1]; ++j)
@@ -41,13 +43,13 @@ static PetscErrorCode CreateGhostSums(Grid &g)
         const bool owned = i >= xs[0] && i < xs[0] + xm[0] && j >= xs[1] && j < xs[1] + xm[1] && k >= xs[2] && k < xs[2] + xm[2];
         if (!owned) local.push_back(l);
       }
-  if (local.empty()) PetscFunctionReturn(PETSC_SUCCESS); // one rank: the P2G sums into the global vector
+  if (local.empty()) PetscFunctionReturn(PETSC_SUCCESS); // one rank: the local vectors are the global ones
   global.resize(local.size());
-  PetscCall(DMGetLocalToGlobalMapping(g.da_nodes, &ltog));
+  PetscCall(DMGetLocalToGlobalMapping(da, &ltog));
   PetscCall(ISLocalToGlobalMappingApplyBlock(ltog, (PetscInt)local.size(), local.data(), global.data()));
   PetscCall(ISCreateBlock(PETSC_COMM_SELF, dof, (PetscInt)local.size(), local.data(), PETSC_COPY_VALUES, &from));
   PetscCall(ISCreateBlock(PETSC_COMM_SELF, dof, (PetscInt)global.size(), global.data(), PETSC_COPY_VALUES, &to));
-  PetscCall(VecScatterCreate(g.nodal_local, from, g.nodal, to, &g.ghost_sums));
+  PetscCall(VecScatterCreate(local_vec, from, global_vec, to, scatter));
   PetscCall(ISDestroy(&from));
   PetscCall(ISDestroy(&to));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -61,6 +63,7 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   PetscFunctionBeginUser;
   g.reached.clear(); // the marks of another layout (p2g.cxx): the new vectors are zeroed whole first
   g.reached_step = -1;
+  g.velocity_written.clear(); // (grid_update.cxx: the first update writes every node)
   const PetscInt width = ShapeGhostWidth(sim.shape);
   // No ghost nodes outside the domain: every support stays inside [0, M-1] (shape.hpp moves the
   // weight of a node beyond a wall onto the inside nodes), so on one rank the local vectors are the
@@ -114,7 +117,8 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   }
   PetscCall(PetscObjectSetName((PetscObject)g.nodal, "nodal"));
   PetscCall(PetscObjectSetName((PetscObject)g.velocity, "grid_velocity"));
-  PetscCall(CreateGhostSums(g));
+  PetscCall(CreateGhostScatter(g, g.da_nodes, g.nodal_local, g.nodal, &g.ghost_sums));
+  if (g.velocity_local != g.velocity) PetscCall(CreateGhostScatter(g, g.da_velocity, g.velocity_local, g.velocity, &g.velocity_ghosts));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -122,6 +126,16 @@ PetscErrorCode GridVelocityToLocal(Grid &g)
 {
   PetscFunctionBeginUser;
   if (g.velocity_local != g.velocity) PetscCall(DMGlobalToLocal(g.da_velocity, g.velocity, INSERT_VALUES, g.velocity_local));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode GridVelocityGhosts(Grid &g)
+{
+  PetscFunctionBeginUser;
+  if (g.velocity_local == g.velocity) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(g.velocity_ghosts, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The ghost-node scatter of the grid velocities is missing");
+  PetscCall(VecScatterBegin(g.velocity_ghosts, g.velocity, g.velocity_local, INSERT_VALUES, SCATTER_REVERSE));
+  PetscCall(VecScatterEnd(g.velocity_ghosts, g.velocity, g.velocity_local, INSERT_VALUES, SCATTER_REVERSE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -271,6 +285,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     PetscCall(VecDestroy(&g.nodal));
     PetscCall(VecDestroy(&g.nodal_local));
     PetscCall(VecScatterDestroy(&g.ghost_sums));
+    PetscCall(VecScatterDestroy(&g.velocity_ghosts));
     PetscCall(VecDestroy(&g.velocity));
     PetscCall(VecDestroy(&g.velocity_local));
     PetscCall(DMDestroy(&g.da_velocity));

@@ -3,6 +3,8 @@
 // are empty (v = 0). Results go to the velocity vector [v_old, v_new] and its ghosted copy.
 #include "grid_index.hpp"
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace burst {
 
@@ -111,23 +113,35 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(g.nodal, &nodal));
   PetscCall(VecGetArray(g.velocity, &vel));
+  // With ghost nodes the owned velocities go into both vectors here, and only the ghost nodes are
+  // scattered after (GridVelocityGhosts): DMGlobalToLocal would copy every owned entry, a pass over
+  // the whole grid per update that a second rank does not shrink.
+  PetscScalar *vel_local = nullptr;
+  if (g.velocity_local != g.velocity) PetscCall(VecGetArray(g.velocity_local, &vel_local));
   // the nodes no particle reaches this step (p2g.cxx) are empty without a look at their sums
   const unsigned char *reached = g.reached_step == sim.step && !g.reached.empty() ? g.reached.data() : nullptr;
   const LocalNodeIndex index(g);
-  PetscInt             l = 0;
-  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
-    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
-      for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
-        PetscScalar *vout = vel + l * vdof;
+  const PetscInt       owned = xm[0] * xm[1] * xm[2];
+  if ((PetscInt)g.velocity_written.size() != owned) g.velocity_written.assign(owned, 1); // (a new layout: write every node once)
+  unsigned char *written = g.velocity_written.data();
+  // node (i, j, k), owned index l: its velocities from its sums
+  auto update = [&](PetscInt i, PetscInt j, PetscInt k, PetscInt l) {
+        PetscScalar *vout = vel + l * vdof, *vout_local = vel_local ? vel_local + index(i, j, k) * vdof : nullptr;
         { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
           bool empty = true;
           if (!reached || reached[index(i, j, k)])
             for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
           if (empty) {
-            for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
-            continue;
+            if (written[l]) { // (else both vectors hold zeros here already)
+              for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
+              if (vout_local)
+                for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = 0;
+              written[l] = 0;
+            }
+            return;
           }
         }
+        written[l] = 1;
         const PetscInt node[3] = {i, j, k};
         PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
         for (PetscInt vf = 0; vf < nvf; ++vf) {
@@ -169,16 +183,46 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
             ApplyBoundaryConditions(g, node, v_new[vf]);
             if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
           }
-          PetscScalar *vn = vel + l * vdof + vf * 2 * dim;
+          PetscScalar *vn = vout + vf * 2 * dim;
           for (PetscInt a = 0; a < dim; ++a) {
             vn[a]       = v_old[vf][a];
             vn[dim + a] = v_new[vf][a];
           }
         }
+        if (vout_local)
+          for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = vout[a];
+  };
+  // Row by row; with this step's marks, a node neither reached nor written is zero and stays so, and
+  // eight such nodes are passed over at a time (most of a grid is empty: the cylinder's ring covers a
+  // few per cent of its nodes, the Taylor rod about a tenth).
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j) {
+      const PetscInt       row = ((k - xs[2]) * xm[1] + (j - xs[1])) * xm[0];
+      const unsigned char *reached_row = reached ? reached + index(xs[0], j, k) : nullptr, *written_row = written + row;
+      for (PetscInt i = 0; i < xm[0];) {
+        if (reached_row) {
+          if (i + 8 <= xm[0]) {
+            std::uint64_t r8, w8;
+            std::memcpy(&r8, reached_row + i, 8);
+            std::memcpy(&w8, written_row + i, 8);
+            if (!(r8 | w8)) {
+              i += 8;
+              continue;
+            }
+          }
+          if (!(reached_row[i] | written_row[i])) {
+            ++i;
+            continue;
+          }
+        }
+        update(xs[0] + i, j, k, row + i);
+        ++i;
       }
+    }
+  if (vel_local) PetscCall(VecRestoreArray(g.velocity_local, &vel_local));
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
-  PetscCall(GridVelocityToLocal(g));
+  PetscCall(GridVelocityGhosts(g));
   PetscCall(PetscLogEventEnd(sim.ev_grid, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

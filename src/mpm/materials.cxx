@@ -48,6 +48,7 @@ Simulation::~Simulation()
   VecDestroy(&grid.nodal);
   VecDestroy(&grid.nodal_local);
   VecScatterDestroy(&grid.ghost_sums);
+  VecScatterDestroy(&grid.velocity_ghosts);
   VecDestroy(&grid.velocity);
   VecDestroy(&grid.velocity_local);
   VecDestroy(&grid.xpic_star);
