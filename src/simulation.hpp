@@ -110,7 +110,7 @@ struct Grid {
   // balance_interval steps (0: start-up only).
   PetscBool balance = PETSC_FALSE;
   PetscInt  balance_interval = 0;
-  PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.1, balance_plastic_weight = 2.0;
+  PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.002, balance_plastic_weight = 2.0;
   PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
   Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
   // Nodes that can hold mass in step `reached_step`, per ghosted local node (p2g.cxx: the P2G of the
