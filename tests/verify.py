@@ -430,6 +430,20 @@ def parallel(args):
         if key in p1:
             scale = max(np.abs(p1[key]).max(), 1e-300)
             check(f"max {key} difference (relative to its max {scale:.3g})", np.abs(p1[key] - p2[key]).max() / scale, args.tol, failures)
+    if args.phases:
+        # each rank's phase times (summary.json, with -log_view): every phase on both ranks, none
+        # negative, the particle phases busy on both, and the disjoint phases (ghost_sums runs inside
+        # p2g and remap) adding up to no more than the rank's stepping wall time
+        phases = s2.get("rank_phase_seconds", {})
+        names = ["p2g", "ghost_sums", "grid_update", "g2p", "remap", "stress", "migrate", "time_step", "stepping"]
+        shaped = all(len(phases.get(n, [])) == 2 and min(phases[n]) >= 0 for n in names)
+        print(f"  rank_phase_seconds: {phases}")
+        check("rank_phase_seconds missing, mis-shaped or negative (0 = OK)", 0 if shaped else 1, 0, failures, fmt="{:.0f}")
+        if shaped:
+            busy = min(min(phases[n]) for n in ("p2g", "g2p", "stress", "stepping"))
+            check("particle phases without time on a rank (0 = OK)", 0 if busy > 0 else 1, 0, failures, fmt="{:.0f}")
+            disjoint = [sum(phases[n][r] for n in names[:-1] if n != "ghost_sums") / phases["stepping"][r] for r in range(2)]
+            check("largest share of the stepping time in the disjoint phases, minus 1 (<= 0 = OK)", max(disjoint) - 1, 0, failures)
     finish(f"parallel[{os.path.basename(args.deck)}]", failures)
 
 
@@ -476,6 +490,7 @@ def main():
     q.add_argument("--steps", type=int, default=50)
     q.add_argument("--tol", type=float, default=1e-10)
     q.add_argument("--extra", default="")
+    q.add_argument("--phases", action="store_true", help="also check the 2-rank run's rank_phase_seconds (pass -log_view in --extra)")
     ld = sub.add_parser("loads")
     ld.add_argument("--tol", type=float, default=2e-2)
     pi = sub.add_parser("plate_impact")
