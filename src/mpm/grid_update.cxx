@@ -126,71 +126,71 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   unsigned char *written = g.velocity_written.data();
   // node (i, j, k), owned index l: its velocities from its sums
   auto update = [&](PetscInt i, PetscInt j, PetscInt k, PetscInt l) {
-        PetscScalar *vout = vel + l * vdof, *vout_local = vel_local ? vel_local + index(i, j, k) * vdof : nullptr;
-        { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
-          bool empty = true;
-          if (!reached || reached[index(i, j, k)])
-            for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
-          if (empty) {
-            if (written[l]) { // (else both vectors hold zeros here already)
-              for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
-              if (vout_local)
-                for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = 0;
-              written[l] = 0;
-            }
-            return;
-          }
+    PetscScalar *vout = vel + l * vdof, *vout_local = vel_local ? vel_local + index(i, j, k) * vdof : nullptr;
+    { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
+      bool empty = true;
+      if (!reached || reached[index(i, j, k)])
+        for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
+      if (empty) {
+        if (written[l]) { // (else both vectors hold zeros here already)
+          for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
+          if (vout_local)
+            for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = 0;
+          written[l] = 0;
         }
-        written[l] = 1;
-        const PetscInt node[3] = {i, j, k};
-        PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
-        for (PetscInt vf = 0; vf < nvf; ++vf) {
-          const PetscScalar *nd = nodal + l * dof + vf * stride;
-          mass[vf]              = nd[0];
-          if (mass[vf] > sim.mass_cutoff) {
-            for (PetscInt a = 0; a < dim; ++a) {
-              v_old[vf][a] = nd[1 + a] / mass[vf];
-              v_new[vf][a] = integrate ? v_old[vf][a] + sim.dt * nd[1 + dim + a] / mass[vf] : v_old[vf][a];
-            }
-          }
+        return;
+      }
+    }
+    written[l] = 1;
+    const PetscInt node[3] = {i, j, k};
+    PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
+    for (PetscInt vf = 0; vf < nvf; ++vf) {
+      const PetscScalar *nd = nodal + l * dof + vf * stride;
+      mass[vf]              = nd[0];
+      if (mass[vf] > sim.mass_cutoff) {
+        for (PetscInt a = 0; a < dim; ++a) {
+          v_old[vf][a] = nd[1 + a] / mass[vf];
+          v_new[vf][a] = integrate ? v_old[vf][a] + sim.dt * nd[1 + dim + a] / mass[vf] : v_old[vf][a];
         }
-        // Mass gradients for the contact normals. On a symmetry face the component normal to it is
-        // zero by symmetry (the body does not end there, it is mirrored), so it is dropped.
-        PetscReal grads[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-        if (nvf > 1)
-          for (PetscInt vf = 0; vf < nvf; ++vf)
-            for (PetscInt a = 0; a < dim; ++a) {
-              const bool mirrored = (node[a] == 0 && g.bc[a][0] == FaceBC::Symmetry) || (node[a] == g.cells[a] && g.bc[a][1] == FaceBC::Symmetry);
-              grads[vf][a]        = mirrored ? 0 : nodal[l * dof + vf * stride + 1 + 2 * dim + a];
-            }
-        const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
-        if (rigid >= 0 && mass[rigid] > sim.mass_cutoff) {
-          const PetscReal *gr = grads[rigid];
-          for (PetscInt a = 0; a < dim; ++a) v_old[rigid][a] = v_new[rigid][a] = sim.rigid_velocity[a];
-          for (PetscInt vf = 0; vf < rigid; ++vf)
-            if (mass[vf] > sim.mass_cutoff) {
-              RigidContact(sim, dim, gr, sim.rigid_velocity, v_old[vf]);
-              RigidContact(sim, dim, gr, sim.rigid_velocity, v_new[vf]);
-            }
+      }
+    }
+    // Mass gradients for the contact normals. On a symmetry face the component normal to it is
+    // zero by symmetry (the body does not end there, it is mirrored), so it is dropped.
+    PetscReal grads[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    if (nvf > 1)
+      for (PetscInt vf = 0; vf < nvf; ++vf)
+        for (PetscInt a = 0; a < dim; ++a) {
+          const bool mirrored = (node[a] == 0 && g.bc[a][0] == FaceBC::Symmetry) || (node[a] == g.cells[a] && g.bc[a][1] == FaceBC::Symmetry);
+          grads[vf][a]        = mirrored ? 0 : nodal[l * dof + vf * stride + 1 + 2 * dim + a];
         }
-        if (sim.TwoDeformableFields() && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
-          const PetscReal *g0 = grads[0], *g1 = grads[1];
-          Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
-          Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);
+    const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
+    if (rigid >= 0 && mass[rigid] > sim.mass_cutoff) {
+      const PetscReal *gr = grads[rigid];
+      for (PetscInt a = 0; a < dim; ++a) v_old[rigid][a] = v_new[rigid][a] = sim.rigid_velocity[a];
+      for (PetscInt vf = 0; vf < rigid; ++vf)
+        if (mass[vf] > sim.mass_cutoff) {
+          RigidContact(sim, dim, gr, sim.rigid_velocity, v_old[vf]);
+          RigidContact(sim, dim, gr, sim.rigid_velocity, v_new[vf]);
         }
-        for (PetscInt vf = 0; vf < nvf; ++vf) {
-          if (vf != rigid) { // the rigid velocity is prescribed
-            ApplyBoundaryConditions(g, node, v_new[vf]);
-            if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
-          }
-          PetscScalar *vn = vout + vf * 2 * dim;
-          for (PetscInt a = 0; a < dim; ++a) {
-            vn[a]       = v_old[vf][a];
-            vn[dim + a] = v_new[vf][a];
-          }
-        }
-        if (vout_local)
-          for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = vout[a];
+    }
+    if (sim.TwoDeformableFields() && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
+      const PetscReal *g0 = grads[0], *g1 = grads[1];
+      Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
+      Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);
+    }
+    for (PetscInt vf = 0; vf < nvf; ++vf) {
+      if (vf != rigid) { // the rigid velocity is prescribed
+        ApplyBoundaryConditions(g, node, v_new[vf]);
+        if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
+      }
+      PetscScalar *vn = vout + vf * 2 * dim;
+      for (PetscInt a = 0; a < dim; ++a) {
+        vn[a]       = v_old[vf][a];
+        vn[dim + a] = v_new[vf][a];
+      }
+    }
+    if (vout_local)
+      for (PetscInt a = 0; a < vdof; ++a) vout_local[a] = vout[a];
   };
   // Row by row; with this step's marks, a node neither reached nor written is zero and stays so, and
   // eight such nodes are passed over at a time (most of a grid is empty: the cylinder's ring covers a
