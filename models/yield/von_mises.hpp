@@ -54,7 +54,7 @@ struct RadialReturn {
   // reads sigma_f <= 0) is finished here (returns false); a plastic one starts its Newton iterations.
   bool Begin(const Flow &flow, Chunk &c, int point)
   {
-    k                 = point;
+    k                   = point;
     const PetscReal *s  = c.deviator[k];
     PetscReal        ss = 0;
     for (int a = 0; a < 9; ++a) ss += s[a] * s[a];
