@@ -15,7 +15,6 @@ class JohnsonCook final : public FlowStressModel<JohnsonCook> {
 public:
   PetscReal A = 0, B = 0, n = 1, C = 0, m = 1, rate0 = 1, room_temperature = 298;
 
-public:
   // What one chain of evaluations caches (a return mapping's point): the thermal factor of its (T,
   // T_m) and the series anchors below. The von Mises return runs two points at once, each with its
   // own Lane, so their chains overlap and neither evicts the other's anchors (von_mises.hpp).

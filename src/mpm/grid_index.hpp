@@ -2,6 +2,8 @@
 #pragma once
 #include "../simulation.hpp"
 #include "shape.hpp"
+#include <cstdint>
+#include <cstring>
 
 namespace burst {
 
@@ -16,6 +18,49 @@ struct LocalNodeIndex {
   }
   inline PetscInt operator()(PetscInt i, PetscInt j, PetscInt k) const { return ((k - gxs[2]) * gxm[1] + (j - gxs[1])) * gxm[0] + (i - gxs[0]); }
 };
+
+// Calls f(l, at, count, i, j, k) for each run of consecutive marked nodes in the rows of the box
+// [xs, xs + xm): l is the run's first place in an array over that box, at its ghosted local index,
+// (i, j, k) its first node. `marks`: one byte per ghosted local node (null: every node, one run per
+// row); `also` (optional): one byte per node of the box, marking more nodes. The box is the ghosted
+// one (local vectors) or the owned one (global vectors). Runs, so that a grid the particles fill is
+// walked row by row (the P2G zeroes it like the memset it replaces), and eight unmarked nodes are
+// passed over at a time, so that an empty grid costs little (the grid update).
+template <class Fn>
+inline void ForEachMarkedRun(const Grid &g, const unsigned char *marks, const PetscInt xs[3], const PetscInt xm[3], Fn &&f, const unsigned char *also = nullptr)
+{
+  const LocalNodeIndex index(g);
+  PetscInt             l = 0;
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; l += xm[0], ++j) {
+      const PetscInt at = index(xs[0], j, k);
+      if (!marks) {
+        f(l, at, xm[0], xs[0], j, k);
+        continue;
+      }
+      const unsigned char *m = marks + at, *a = also ? also + l : nullptr;
+      auto                 marked = [&](PetscInt i) { return m[i] || (a && a[i]); };
+      for (PetscInt i = 0; i < xm[0];) {
+        if (i + 8 <= xm[0]) {
+          std::uint64_t m8, a8 = 0;
+          std::memcpy(&m8, m + i, 8);
+          if (a) std::memcpy(&a8, a + i, 8);
+          if (!(m8 | a8)) {
+            i += 8;
+            continue;
+          }
+        }
+        if (!marked(i)) {
+          ++i;
+          continue;
+        }
+        PetscInt end = i + 1;
+        while (end < xm[0] && marked(end)) ++end;
+        f(l + i, at + i, end - i, xs[0] + i, j, k);
+        i = end;
+      }
+    }
+}
 
 // G2P's velocity update of one particle, shared by GridToParticles and MUSL's remap: v_p <- v_new
 // (the FLIP/PIC blend, or a rigid body's prescribed velocity) and the work of the external force over

@@ -261,41 +261,11 @@ static PetscErrorCode SpreadReached(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Calls f(l, at, count) for each run of consecutive marked nodes in the rows of the box
-// [xs, xs + xm) (`marks`: one byte per ghosted local node; null: every node, one run per row): l is
-// the run's first place in an array over that box, at its ghosted local index. The box is the
-// ghosted one (local vectors) or the owned one (global vectors). Runs, so that a grid the particles
-// fill is zeroed row by row like the memset it replaces.
-template <class Fn>
-static void ForEachMarkedRun(const Grid &g, const unsigned char *marks, const PetscInt xs[3], const PetscInt xm[3], Fn &&f)
-{
-  const LocalNodeIndex index(g);
-  PetscInt             l = 0;
-  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
-    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; l += xm[0], ++j) {
-      const PetscInt at = index(xs[0], j, k);
-      if (!marks) {
-        f(l, at, xm[0]);
-        continue;
-      }
-      for (PetscInt i = 0; i < xm[0];) {
-        if (!marks[at + i]) {
-          ++i;
-          continue;
-        }
-        PetscInt end = i + 1;
-        while (end < xm[0] && marks[at + end]) ++end;
-        f(l + i, at + i, end - i);
-        i = end;
-      }
-    }
-}
-
 // Zeroes the listed dofs (every dof when zero is null) of the marked nodes (every node when marks is
 // null) of a nodal array over the box [xs, xs + xm).
 static void ZeroNodes(const Grid &g, const unsigned char *marks, PetscScalar *array, const PetscInt xs[3], const PetscInt xm[3], PetscInt dof, const PetscInt *zero, PetscInt nzero)
 {
-  ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt, PetscInt count) {
+  ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt, PetscInt count, PetscInt, PetscInt, PetscInt) {
     if (!zero) std::fill(array + l * dof, array + (l + count) * dof, 0.0);
     else
       for (PetscInt node = l; node < l + count; ++node)
@@ -381,7 +351,7 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     PetscCall(VecGetArrayRead(g.nodal_local, &local));
     PetscCall(VecGetArray(g.nodal, &nodal));
     const unsigned char *marks = g.reached_step == sim.step ? g.reached.data() : nullptr; // this step's marks (the mass P2G above, or the one before at the same positions)
-    ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt at, PetscInt count) {
+    ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt at, PetscInt count, PetscInt, PetscInt, PetscInt) {
       for (PetscInt node = 0; node < count; ++node)
         for (PetscInt z = 0; z < nzero; ++z) nodal[(l + node) * dof + zero[z]] += local[(at + node) * dof + zero[z]]; // the requested dofs (the local vector's others are zero)
     });
