@@ -6,6 +6,9 @@
 //   thermal expansivity      alpha = (dP/dT)_rho / (rho (dP/drho)_T)
 //   energy of compression    c_v dT = -T (dP/dT)_rho dv   (ICE evolves M c_v T; for an ideal gas
 //                            T (dP/dT)_rho = p, Uintah's -p dV; for a stiffened gas p + p_inf)
+//   specific internal energy e(rho, T) = c_v T + e_cold(rho): every model here is linear in T,
+//                            P = T f(rho) + g(rho), so (de/dv)_T = T (dP/dT)_rho - P = -g and
+//                            e_cold = integral of g(rho)/rho^2 drho (ColdEnergy; 0 for an ideal gas)
 // rho is the material ("micro") density in kg/m^3, T in K, P in Pa; c_v in J/(kg K) is constant.
 //
 // Adding a model: one file models/gas_eos/<name>.cxx with a class derived from GasEOS and a create
@@ -39,6 +42,12 @@ public:
   // models without a thermal part return the reference temperature they were given.
   virtual PetscReal Temperature(PetscReal rho, PetscReal p) const = 0;
 
+  // The cold (temperature-independent) part of the specific internal energy, e - c_v T, J/kg: the
+  // energy that the total-energy form conserves is rho (c_v T + e_cold(rho) + |u|^2/2).
+  virtual PetscReal ColdEnergy(PetscReal) const { return 0; }
+  // Whether ColdEnergy is not identically zero (the ICE step skips its bookkeeping otherwise).
+  virtual bool HasColdEnergy() const { return false; }
+
   PetscReal cv = 716; // specific heat at constant volume, J/(kg K)
 
   // Derived quantities (see the header comment), the same for every model.
@@ -52,6 +61,8 @@ public:
     const GasEOSPoint s = Evaluate(rho, T);
     return s.dp_dT / (rho * s.dp_drho);
   }
+  // e(rho, T), J/kg
+  PetscReal InternalEnergy(PetscReal rho, PetscReal T) const { return cv * T + ColdEnergy(rho); }
   std::string name_;  // registered model name
 };
 

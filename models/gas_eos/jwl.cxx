@@ -3,6 +3,9 @@
 //   (dP/drho)_T = (A R1 exp(-R1 rho0/rho) + B R2 exp(-R2 rho0/rho)) rho0/rho^2 + omega c_v T
 //   (dP/dT)_rho = omega rho c_v
 // Isentropes: c_v dT = T omega rho c_v drho/rho^2, so T rho^(-omega) is constant along them.
+// Cold energy (zero as rho -> 0): e_cold = A/(R1 rho0) exp(-R1 rho0/rho) + B/(R2 rho0) exp(-R2 rho0/rho),
+// so e = c_v T + e_cold gives the usual energy form P = A (1 - omega rho/(R1 rho0)) exp(-R1 rho0/rho)
+// + B (1 - omega rho/(R2 rho0)) exp(-R2 rho0/rho) + omega rho e.
 // With A, B >= 0, R1, R2, omega > 0, P increases strictly with rho from 0 (rho -> 0) to infinity, so
 // Density(p, T) has exactly one root for p > 0; it is found by Newton's method safeguarded by
 // bisection on a bracket [lo, hi] with P(lo) <= p <= P(hi): lo = 0, hi from the thermal-only density
@@ -57,6 +60,13 @@ public:
     }
     return -1;
   }
+
+  PetscReal ColdEnergy(PetscReal rho) const override
+  {
+    if (!(rho > 0)) return 0;
+    return A / R1rho0_ * std::exp(-R1rho0_ / rho) + B / R2rho0_ * std::exp(-R2rho0_ / rho);
+  }
+  bool HasColdEnergy() const override { return A != 0 || B != 0; }
 
   // May be <= 0 if p lies at or below the cold curve A exp(-R1 rho0/rho) + B exp(-R2 rho0/rho).
   PetscReal Temperature(PetscReal rho, PetscReal p) const override

@@ -4,6 +4,10 @@
 //   rho <  rho0: P = p0 (rho/rho0)^(1/(K p0)),        (dP/drho)_T = (rho/rho0)^(1/(K p0)) / (K rho)
 // (P and dP/drho are continuous at rho0: p0 and 1/(K rho0).) K is a compressibility (1/Pa). No
 // thermal part: (dP/dT)_rho = 0, so c^2 = dP/drho and alpha = 0; Temperature() returns T0.
+// Cold energy (all of the energy: c_v T does not change with compression), the integral of P/rho^2
+// from rho0 (zero there):
+//   rho >= rho0: e_cold = p0 (1/rho0 - 1/rho) + [(rho^(n-1)/rho0^n - 1/rho0)/(n-1) + 1/rho - 1/rho0]/(n K)
+//   rho <  rho0: e_cold = (p0/rho0) ((rho/rho0)^(m-1) - 1)/(m-1),  m = 1/(K p0)
 // Inverse: p >= p0: rho = rho0 (1 + n K (p - p0))^(1/n);  p < p0: rho = rho0 (p/p0)^(K p0).
 // Options (prefix -<material>_): -murnaghan_n (-, > 0), -murnaghan_K (1/Pa, > 0),
 // -murnaghan_rho0 (kg/m^3, > 0), -murnaghan_p0 (Pa, > 0), -murnaghan_T0 (K, > 0), -cv (J/(kg K), > 0).
@@ -41,6 +45,18 @@ public:
     return rho0 * std::exp(K * p0 * std::log(p / p0));
   }
   PetscReal Temperature(PetscReal, PetscReal) const override { return T0; }
+  PetscReal ColdEnergy(PetscReal rho) const override
+  {
+    if (!(rho > 0)) return 0;
+    const PetscReal d = (rho - rho0) * inv_rho0_, L = std::log1p(d), inv_rho = 1 / rho;
+    if (d >= 0) {
+      // (rho^(n-1)/rho0^n - 1/rho0)/(n-1) = (expm1((n-1) L))/((n-1) rho0), without cancellation
+      const PetscReal power = (n == 1) ? L * inv_rho0_ : std::expm1((n - 1) * L) / ((n - 1) * rho0);
+      return p0 * (inv_rho0_ - inv_rho) + (power + inv_rho - inv_rho0_) * inv_nK_;
+    }
+    return p0 * inv_rho0_ * std::expm1((m_ - 1) * L) / (m_ - 1);
+  }
+  bool HasColdEnergy() const override { return true; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {

@@ -3,6 +3,7 @@
 //                                           e = c_v T + p_inf/rho)
 //   (dP/drho)_T = (gamma - 1) c_v T,  (dP/dT)_rho = (gamma - 1) c_v rho
 //   c^2 = gamma (gamma - 1) c_v T = gamma (P + p_inf)/rho
+//   e = c_v T + p_inf/rho (the cold energy p_inf v)
 // p_inf = 0 is the ideal gas. Options (prefix -<material>_): -gamma (default 1.4, > 1),
 // -cv (J/(kg K), default 716, > 0), -p_inf (Pa, default 0, >= 0).
 #include "options.hpp"
@@ -24,6 +25,8 @@ public:
     return (rho > 0 && rho < PETSC_MAX_REAL) ? rho : -1;
   }
   PetscReal Temperature(PetscReal rho, PetscReal p) const override { return (p + p_inf) / ((gamma - 1) * cv * rho); }
+  PetscReal ColdEnergy(PetscReal rho) const override { return p_inf / rho; }
+  bool      HasColdEnergy() const override { return p_inf != 0; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {
