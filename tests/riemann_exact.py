@@ -41,6 +41,8 @@ class Solution:
     right_tail: float
     right_head: float
     iterations: int
+    p_inf_left: float = 0.0   # stiffened gas P = (gamma - 1) rho e - gamma p_inf (Pa); 0: ideal gas
+    p_inf_right: float = 0.0
 
     @property
     def contact(self):
@@ -51,79 +53,97 @@ class Solution:
         return tuple(x0 + s * t for s in (self.left_head, self.left_tail, self.u_star, self.right_tail, self.right_head))
 
 
-def _sound_speed(state, gamma):
+def _sound_speed(state, gamma, p_inf=0.0):
+    """c^2 = gamma (p + p_inf)/rho (stiffened gas; p_inf = 0: ideal gas)."""
     rho, _, p = state
-    return math.sqrt(gamma * p / rho)
+    return math.sqrt(gamma * (p + p_inf) / rho)
 
 
-def _f(p, state, gamma):
-    """Toro's f_K(p) and its derivative (shock branch p > p_K, rarefaction branch p <= p_K)."""
+def _f(p, state, gamma, p_inf=0.0):
+    """Toro's f_K(p) and its derivative (shock branch p > p_K, rarefaction branch p <= p_K). The
+    stiffened gas is Toro's ideal-gas f with every pressure replaced by p + p_inf (Toro ch. 4 with
+    Ivings, Causon & Toro 1998): the pressure jump p - p_K is unchanged."""
     rho, _, pk = state
-    a = math.sqrt(gamma * pk / rho)
+    a = math.sqrt(gamma * (pk + p_inf) / rho)
     if p > pk:
         A = 2.0 / ((gamma + 1.0) * rho)
-        B = pk * (gamma - 1.0) / (gamma + 1.0)
-        q = math.sqrt(A / (p + B))
-        return (p - pk) * q, q * (1.0 - 0.5 * (p - pk) / (p + B))
-    r = p / pk
+        B = (pk + p_inf) * (gamma - 1.0) / (gamma + 1.0)
+        q = math.sqrt(A / (p + p_inf + B))
+        return (p - pk) * q, q * (1.0 - 0.5 * (p - pk) / (p + p_inf + B))
+    r = (p + p_inf) / (pk + p_inf)
     return (2.0 * a / (gamma - 1.0)) * (r ** ((gamma - 1.0) / (2.0 * gamma)) - 1.0), r ** (-(gamma + 1.0) / (2.0 * gamma)) / (rho * a)
 
 
-def solve(left, right, gamma_left=1.4, gamma_right=None, rtol=1e-15, max_iterations=200):
+def solve(left, right, gamma_left=1.4, gamma_right=None, rtol=1e-15, max_iterations=200, p_inf_left=0.0, p_inf_right=None):
+    """Exact solution for an ideal gas (p_inf 0) or a stiffened gas P = (gamma - 1) rho e - gamma p_inf
+    on each side; p_inf_right defaults to p_inf_left as gamma_right does to gamma_left."""
     gamma_right = gamma_left if gamma_right is None else gamma_right
+    p_inf_right = p_inf_left if p_inf_right is None else p_inf_right
     left = tuple(float(v) for v in left)
     right = tuple(float(v) for v in right)
     (rl, ul, pl), (rr, ur, pr) = left, right
-    if min(rl, pl, rr, pr) <= 0:
-        raise ValueError("densities and pressures must be positive")
-    al, ar = _sound_speed(left, gamma_left), _sound_speed(right, gamma_right)
+    pil, pir = float(p_inf_left), float(p_inf_right)
+    if min(pil, pir) < 0:
+        raise ValueError("p_inf must be >= 0")
+    if min(rl, pl + pil, rr, pr + pir) <= 0:
+        raise ValueError("densities and p + p_inf must be positive")
+    al, ar = _sound_speed(left, gamma_left, pil), _sound_speed(right, gamma_right, pir)
     du = ur - ul
-    if 2 * al / (gamma_left - 1) + 2 * ar / (gamma_right - 1) <= du:
+    # the lowest admissible pressure: p + p_inf > 0 on both sides (0 for ideal gases)
+    floor = -min(pil, pir)
+    def f_floor(state, gamma, p_inf):  # f_K at the floor (a rarefaction: p_floor <= p_K)
+        r = (floor + p_inf) / (state[2] + p_inf)
+        return 2.0 * _sound_speed(state, gamma, p_inf) / (gamma - 1.0) * (r ** ((gamma - 1.0) / (2.0 * gamma)) - 1.0)
+
+    if f_floor(left, gamma_left, pil) + f_floor(right, gamma_right, pir) + du >= 0:
+        # ideal gases: 2 a_L/(gamma_L - 1) + 2 a_R/(gamma_R - 1) <= u_R - u_L (Toro 4.40)
         raise ValueError("the data generate a vacuum (pressure positivity condition violated)")
-    # Newton from the arithmetic mean (ice.md 6.1). f is increasing and concave, so Newton from
-    # the left of the root converges monotonically; a step to p <= 0 is halved back.
+    # Newton from the arithmetic mean (ice.md 6.1). f is increasing and concave in p (in p + p_inf
+    # on each side), so Newton from the left of the root converges monotonically; a step below the
+    # floor is halved back towards it.
     p = 0.5 * (pl + pr)
     for it in range(1, max_iterations + 1):
-        fl, dfl = _f(p, left, gamma_left)
-        fr, dfr = _f(p, right, gamma_right)
+        fl, dfl = _f(p, left, gamma_left, pil)
+        fr, dfr = _f(p, right, gamma_right, pir)
         step = (fl + fr + du) / (dfl + dfr)
         p_new = p - step
-        if p_new <= 0:
-            p_new = 0.5 * p
-        change = abs(p_new - p) / (0.5 * (p_new + p))
+        if p_new <= floor:
+            p_new = floor + 0.5 * (p - floor)
+        change = abs(p_new - p) / (0.5 * (p_new + p) - floor)
         p = p_new
         if change < rtol:
             break
     else:
         raise RuntimeError("the star-pressure Newton iteration did not converge")
-    fl, _ = _f(p, left, gamma_left)
-    fr, _ = _f(p, right, gamma_right)
+    fl, _ = _f(p, left, gamma_left, pil)
+    fr, _ = _f(p, right, gamma_right, pir)
     u = 0.5 * (ul + ur) + 0.5 * (fr - fl)
 
     gl, gr = gamma_left, gamma_right
+    zl, zr = (p + pil) / (pl + pil), (p + pir) / (pr + pir)  # shifted pressure ratios
     if p > pl:  # left shock
         beta = (gl - 1) / (gl + 1)
-        rho_l = rl * (p / pl + beta) / (beta * p / pl + 1)
-        s = ul - al * math.sqrt((gl + 1) / (2 * gl) * p / pl + (gl - 1) / (2 * gl))
+        rho_l = rl * (zl + beta) / (beta * zl + 1)
+        s = ul - al * math.sqrt((gl + 1) / (2 * gl) * zl + (gl - 1) / (2 * gl))
         lhead = ltail = s
     else:
-        rho_l = rl * (p / pl) ** (1 / gl)
+        rho_l = rl * zl ** (1 / gl)
         lhead = ul - al
-        ltail = u - al * (p / pl) ** ((gl - 1) / (2 * gl))
+        ltail = u - al * zl ** ((gl - 1) / (2 * gl))
     if p > pr:  # right shock
         beta = (gr - 1) / (gr + 1)
-        rho_r = rr * (p / pr + beta) / (beta * p / pr + 1)
-        s = ur + ar * math.sqrt((gr + 1) / (2 * gr) * p / pr + (gr - 1) / (2 * gr))
+        rho_r = rr * (zr + beta) / (beta * zr + 1)
+        s = ur + ar * math.sqrt((gr + 1) / (2 * gr) * zr + (gr - 1) / (2 * gr))
         rhead = rtail = s
     else:
-        rho_r = rr * (p / pr) ** (1 / gr)
+        rho_r = rr * zr ** (1 / gr)
         rhead = ur + ar
-        rtail = u + ar * (p / pr) ** ((gr - 1) / (2 * gr))
-    return Solution(left, right, gl, gr, p, u, rho_l, rho_r, p > pl, p > pr, lhead, ltail, rtail, rhead, it)
+        rtail = u + ar * zr ** ((gr - 1) / (2 * gr))
+    return Solution(left, right, gl, gr, p, u, rho_l, rho_r, p > pl, p > pr, lhead, ltail, rtail, rhead, it, pil, pir)
 
 
-def star_state(left, right, gamma_left=1.4, gamma_right=None):
-    s = solve(left, right, gamma_left, gamma_right)
+def star_state(left, right, gamma_left=1.4, gamma_right=None, p_inf_left=0.0, p_inf_right=None):
+    s = solve(left, right, gamma_left, gamma_right, p_inf_left=p_inf_left, p_inf_right=p_inf_right)
     return s.p_star, s.u_star, s.rho_star_left, s.rho_star_right
 
 
@@ -133,7 +153,8 @@ def sample_solution(sol, x, t, x0=0.0):
     s = (x - x0) / t
     (rl, ul, pl), (rr, ur, pr) = sol.left, sol.right
     gl, gr = sol.gamma_left, sol.gamma_right
-    al, ar = math.sqrt(gl * pl / rl), math.sqrt(gr * pr / rr)
+    pil, pir = sol.p_inf_left, sol.p_inf_right
+    al, ar = _sound_speed(sol.left, gl, pil), _sound_speed(sol.right, gr, pir)
     rho = np.empty_like(s)
     u = np.empty_like(s)
     p = np.empty_like(s)
@@ -150,7 +171,7 @@ def sample_solution(sol, x, t, x0=0.0):
         af = 2 / (gl + 1) * (al + 0.5 * (gl - 1) * (ul - s[lf]))
         rho[lf] = rl * (af / al) ** (2 / (gl - 1))
         u[lf] = uf
-        p[lf] = pl * (af / al) ** (2 * gl / (gl - 1))
+        p[lf] = (pl + pil) * (af / al) ** (2 * gl / (gl - 1)) - pil
     right_side = ~left_side
     ro = right_side & (s > sol.right_head)
     rs = right_side & (s <= sol.right_tail) & ~ro
@@ -162,23 +183,28 @@ def sample_solution(sol, x, t, x0=0.0):
         af = 2 / (gr + 1) * (ar - 0.5 * (gr - 1) * (ur - s[rf]))
         rho[rf] = rr * (af / ar) ** (2 / (gr - 1))
         u[rf] = uf
-        p[rf] = pr * (af / ar) ** (2 * gr / (gr - 1))
+        p[rf] = (pr + pir) * (af / ar) ** (2 * gr / (gr - 1)) - pir
     return rho, u, p
 
 
-def sample(x, t, left, right, gamma_left=1.4, gamma_right=None, x0=0.0):
+def sample(x, t, left, right, gamma_left=1.4, gamma_right=None, x0=0.0, p_inf_left=0.0, p_inf_right=None):
     """rho, u, p at the points x (array) at time t > 0, diaphragm at x0."""
-    return sample_solution(solve(left, right, gamma_left, gamma_right), x, t, x0)
+    return sample_solution(solve(left, right, gamma_left, gamma_right, p_inf_left=p_inf_left, p_inf_right=p_inf_right), x, t, x0)
 
 
-def cell_average(x, dx, t, left, right, gamma_left=1.4, gamma_right=None, x0=0.0, sub=32):
+def cell_average(x, dx, t, left, right, gamma_left=1.4, gamma_right=None, x0=0.0, sub=32, p_inf_left=0.0, p_inf_right=None):
     """Averages of rho, u, p over cells [x - dx/2, x + dx/2] (midpoint rule on `sub` points; the
     solution is piecewise smooth, so this is exact to O(dx/sub) at the jumps)."""
-    sol = solve(left, right, gamma_left, gamma_right)
+    return cell_average_solution(solve(left, right, gamma_left, gamma_right, p_inf_left=p_inf_left, p_inf_right=p_inf_right), x, dx, t, x0, sub)
+
+
+def cell_average_solution(sol, x, dx, t, x0=0.0, sub=32):
+    """cell_average for a solved problem: any object with sample_solution's interface, or one with
+    a sample(x, t, x0) method (the general-EOS solutions below)."""
     x = np.asarray(x, dtype=float)
     offsets = (np.arange(sub) + 0.5) / sub - 0.5
     pts = x[:, None] + np.asarray(dx, dtype=float).reshape(-1, 1) * offsets[None, :] if np.ndim(dx) else x[:, None] + dx * offsets[None, :]
-    rho, u, p = sample_solution(sol, pts.ravel(), t, x0)
+    rho, u, p = sol.sample(pts.ravel(), t, x0) if hasattr(sol, "sample") else sample_solution(sol, pts.ravel(), t, x0)
     shape = pts.shape
     return rho.reshape(shape).mean(axis=1), u.reshape(shape).mean(axis=1), p.reshape(shape).mean(axis=1)
 

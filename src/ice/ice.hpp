@@ -100,6 +100,7 @@ struct IceSolver {
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
   PetscBool drag_heating = PETSC_TRUE;         // with conservative_energy: the drag's dissipated kinetic energy becomes heat
   PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
+  PetscReal viscosity[2] = {0.5, 1};          // shock viscosity c1 (linear), c2 (quadratic), viscosity.cxx
   PetscReal cfl = 0.25;
   PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit
   PetscReal dt_fixed = 0;            // -ice_dt
@@ -212,6 +213,8 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
 // out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
 // temperature, specific volume). The arrays are overwritten for owned cells.
 void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
+// Shock viscosity (viscosity.cxx) of the face between local cells R - lstride[d] and R, Pa.
+PetscReal      IceFaceViscosity(const IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt R);
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t); // gases only
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that
 // the gases fill what the solids leave at the start (ice.md 8).
