@@ -142,6 +142,7 @@ struct IceSolver {
   PetscInt  ksp_iterations = 0, outer_iterations = 0; // of the last step
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
   PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy or the internal-energy remap (this rank)
+  PetscInt64 energy_fallbacks_remap = 0; // of those, the internal-energy remap's (advection.cxx; the rest are the sources')
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
