@@ -214,6 +214,10 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
 // out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
 // temperature, specific volume). The arrays are overwritten for owned cells.
 void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
+// The Lagrangian temperature of gas m in the cell c (local index idx) from the temperature form,
+// c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
+// total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
+PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
 // Shock viscosity (viscosity.cxx) of the face between local cells R - lstride[d] and R, Pa.
 PetscReal      IceFaceViscosity(const IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt R);
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t); // gases only

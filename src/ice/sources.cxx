@@ -18,6 +18,23 @@
 
 namespace burst {
 
+PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L)
+{
+  const GasEOS   &eos    = *ice.materials[m].eos;
+  const PetscReal theta  = c[ice.Offset(m, icef::theta)], rho = c[ice.Offset(m, icef::rho)], rho_L = c[ice.Offset(m, icef::rho_L)];
+  const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
+  const PetscReal dr     = ice.has_mass_source ? ice.mass_source[idx * ice.nmat + m] : 0;
+  const PetscReal de     = ice.has_mass_source ? ice.energy_source[idx * ice.nmat + m] : 0;
+  const PetscReal pdv    = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
+  if (cold_L && eos.HasColdEnergy()) {
+    // the volume change that the pressure change dp_dil gives, -theta kappa dp_dil, and the
+    // converted mass's
+    const PetscReal theta_L = theta * (1 - c[ice.Offset(m, icef::kappa)] * dp_dil) + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
+    *cold_L                 = eos.ColdEnergy(theta_L > 0 ? rho_L / theta_L : 1 / c[ice.Offset(m, icef::spvol)]);
+  }
+  return (rho * eos.cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * eos.cv);
+}
+
 PetscErrorCode IceSources(IceSolver &ice)
 {
   PetscScalar   *a;
@@ -35,6 +52,8 @@ PetscErrorCode IceSources(IceSolver &ice)
     return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
   };
   const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
+  // the cell exchange follows and gives each material the kinetic energy its drag removes
+  const bool drag_settles = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -52,7 +71,6 @@ PetscErrorCode IceSources(IceSolver &ice)
             grad_q[d]    = (q_face[d][1] - q_face[d][0]) / ice.h[d];
           }
         }
-        const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
           const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
@@ -74,7 +92,7 @@ PetscErrorCode IceSources(IceSolver &ice)
             if (dmv && dr > 0) ke_in += 0.5 * dmv[d] * dmv[d] / dr;
           }
           PetscReal  T_L, cold_L = 0; // cold_L: e_cold at the Lagrangian specific volume, J/kg
-          bool       cold_from_faces = false;
+          bool       cold_from_faces = false, deferred = false;
           const bool cold = !mat.solid && mat.eos->HasColdEnergy();
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
           else if (theta < ice.trace_fraction) {
@@ -112,25 +130,19 @@ PetscErrorCode IceSources(IceSolver &ice)
               const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
               T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
             }
-            if (!(T_L > 0)) {
-              // the explicit pressure can accelerate a gas by more than its internal energy in one
-              // step (a burning cell's created volume beside it): keep the -p dV form here and count it
-              const PetscReal pdv = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-              T_L                 = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * mat.eos->cv);
+            // T_L <= 0: the pressure gradient gave the gas more kinetic energy than it holds. In a
+            // cell that the momentum exchange settles (a gas in a solid's cell, pushed by the
+            // solid's pressure field) the drag gives that energy back (exchange.cxx), which then
+            // checks; alone, keep the -p dV form here and count it
+            if (!(T_L > 0) && !drag_settles) {
+              T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
               ++ice.energy_fallbacks;
               cold_from_faces = false;
             }
-          } else {
-            const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-            T_L                  = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + work + de) / (rho_L * mat.eos->cv);
-          }
-          PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
-          if (cold && !cold_from_faces) {
-            // the temperature forms: the volume change that the pressure change dp_dil gives,
-            // -theta kappa dp_dil (their compression work), and the converted mass's
-            const PetscReal theta_L = theta * (1 - c[ice.Offset(m, icef::kappa)] * dp_dil) + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
-            cold_L                  = mat.eos->ColdEnergy(theta_L > 0 ? rho_L / theta_L : 1 / c[ice.Offset(m, icef::spvol)]);
-          }
+            deferred = !(T_L > 0);
+          } else T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
+          PetscCheck((T_L > 0 || deferred) && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
+          if (cold && !cold_from_faces) IceTemperatureForm(ice, c, idx, m, &cold_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;
           // the advection's total energy adds T_L and the kinetic energy to this (advection.cxx)
           if (cold) c[ice.Offset(m, icef::energy_L)] = cold_L / mat.eos->cv;
