@@ -28,7 +28,9 @@ namespace burst {
 enum class IceBC : int { Wall = 0, Symmetry = 1, Outflow = 2, Inflow = 3 };
 enum class IcePressureSolver : int { Explicit = 0, SemiImplicit = 1 };
 enum class RiemannShape : int { Planar = 0, Cylinder = 1, Sphere = 2 };
+enum class IceEquilibrationForm : int { Mass = 0, Normalized = 1 };
 extern const char *const IceBCNames[];
+extern const char *const IceEquilibrationFormNames[];
 extern const char *const IcePressureSolverNames[];
 extern const char *const RiemannShapeNames[];
 
@@ -95,6 +97,10 @@ struct IceSolver {
 
   // Options
   IcePressureSolver pressure_solver = IcePressureSolver::Explicit;
+  // In cells that hold a solid: the materials' volumes from their masses (Mass), or rescaled to fill
+  // the cell at the old pressure, the gases' from their transported specific volume (Normalized,
+  // equilibration.cxx)
+  IceEquilibrationForm equilibration_form = IceEquilibrationForm::Mass;
   PetscInt  advection_order = 2;
   PetscBool compatible_fluxes = PETSC_TRUE;
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
