@@ -11,7 +11,8 @@
 // ICE (a scene with gases), rows 4 and 7-17 of ice.md 1.2:
 //   equilibration pressure -> face velocities + face exchange -> pressure (explicit or KSP) ->
 //   face pressure, momentum and energy sources, Lagrangian values -> cell exchange, Lagrangian
-//   specific volume -> advection, conserved to primitive
+//   specific volume -> advection, conserved to primitive; the budgets of the domain faces are booked
+//   after the sources (face work, face-pressure impulse) and after the advection (open-face fluxes)
 //
 // Solids and gas together (ice.md 1.2, the full table; USL or MUSL for the particles):
 //   P2G(m, mv) -> solids to cells -> equilibration -> burning (gas sources, particle masses) ->
@@ -71,8 +72,10 @@ static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
   PetscCall(IceSources(ice));
+  PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
   PetscCall(IceAdvect(ice));
+  PetscCall(IceBudgetOpenFaces(ice));
   ice.time += dt;
   ice.step += 1;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -97,6 +100,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(GridUpdate(sim));
   PetscCall(CouplingSolidVelocity(sim));
   PetscCall(IceSources(ice));
+  PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
   if (sim.scheme == StepScheme::MUSL) {
@@ -110,6 +114,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(ConductHeat(sim));
   PetscCall(NonlocalAverage(sim));
   PetscCall(IceAdvect(ice));
+  PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
   ice.step += 1;
   PetscFunctionReturn(PETSC_SUCCESS);

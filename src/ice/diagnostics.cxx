@@ -1,5 +1,6 @@
-// Gas totals for the monitor (mass, momentum, internal and kinetic energy) and the profile of a
-// run along x (profile.csv), written atomically by rank 0.
+// Gas totals for the monitor (mass, momentum, internal and kinetic energy), the budget of the domain
+// faces (what the gas takes out through open faces, the face pressure's impulse) and the profile of
+// a run along x (profile.csv), written atomically by rank 0.
 #include "ice.hpp"
 #include <algorithm>
 #include <cstdio>
@@ -27,7 +28,8 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
             local[1 + d] += M * u;
             u2 += u * u;
           }
-          local[4] += M * ice.materials[m].eos->cv * c[ice.Offset(m, icef::temp)];
+          // e(rho_micro, T) = c_v T + e_cold(rho_micro), at the material density of the last equilibration
+          local[4] += M * ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]);
           local[5] += 0.5 * M * u2;
         }
       }
@@ -38,6 +40,71 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
   for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
   t.internal_energy = global[4];
   t.kinetic_energy  = global[5];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceBudgetFaces(IceSolver &ice)
+{
+  const PetscScalar *a;
+  const PetscInt     S = ice.stride, n = ice.nmat;
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  // the face pressure of IceSources (sources.cxx), the same expression on the same cells
+  auto face_pressure = [&](PetscInt L, PetscInt R) {
+    const PetscScalar *cL = a + L * S, *cR = a + R * S;
+    PetscReal          rL = 0, rR = 0;
+    for (PetscInt m = 0; m < n; ++m) {
+      rL += cL[ice.Offset(m, icef::rho)];
+      rR += cR[ice.Offset(m, icef::rho)];
+    }
+    return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
+  };
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      if (!(s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d])) continue; // not this rank's face
+      const PetscReal A = V / ice.h[d], outward = s ? 1 : -1;
+      PetscInt        lo[3], hi[3];
+      for (PetscInt e = 0; e < 3; ++e) {
+        lo[e] = ice.xs[e];
+        hi[e] = ice.xs[e] + ice.xm[e];
+      }
+      lo[d] = s ? ice.cells[d] - 1 : 0;
+      hi[d] = lo[d] + 1;
+      for (PetscInt k = lo[2]; k < hi[2]; ++k)
+        for (PetscInt j = lo[1]; j < hi[1]; ++j)
+          for (PetscInt i = lo[0]; i < hi[0]; ++i) {
+            const PetscInt  idx = ice.LocalIndex(i, j, k), ghost = s ? idx + ice.lstride[d] : idx - ice.lstride[d];
+            const PetscInt  L = s ? idx : ghost, R = s ? ghost : idx; // the face's cells; its velocity is stored with R
+            const PetscReal p = face_pressure(L, R);
+            for (PetscInt m = 0; m < n; ++m) {
+              const PetscReal theta = a[idx * S + ice.Offset(m, icef::theta)];
+              ice.boundary.impulse[d] -= outward * ice.dt * theta * p * A; // -dt theta grad p: the face's share
+              // the face work of the conservative energy form (gases that are not a trace only, as IceSources)
+              if (m >= ice.ngas || !ice.conservative_energy || theta < ice.trace_fraction) continue;
+              const PetscReal u       = ice.face_vel[d][R * n + m];
+              const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
+              ice.boundary.work += outward * ice.dt * A * p * theta_f * u;
+            }
+          }
+    }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
+{
+  PetscFunctionBeginUser;
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt m = 0; m < ice.ngas; ++m) {
+    PetscReal *f = ice.boundary_flux[m]; // density, momentum (dim), energy (or temperature) over c_v, ...
+    ice.boundary.mass += V * f[0];
+    for (PetscInt d = 0; d < ice.dim; ++d) ice.boundary.momentum[d] += V * f[1 + d];
+    // total energy: c_v T + |u|^2/2 is what the advection carries (with -ice_advect_total_energy 0 the
+    // internal energy c_v T only: that form does not conserve the total)
+    ice.boundary.energy += V * ice.materials[m].eos->cv * f[1 + ice.dim];
+    for (int q = 0; q < kIceBoundaryFluxes; ++q) f[q] = 0;
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

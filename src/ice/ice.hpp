@@ -81,6 +81,21 @@ struct IceTotals {
   PetscReal max_pressure = 0; // Pa, over the cells
 };
 
+// What crossed the domain faces since the start, this rank's faces (the budgets of monitor.csv,
+// diagnostics.cxx). Open (outflow, inflow) faces: the gases' mass, momentum and advected total energy
+// out of the domain, the very face fluxes the advection gives the cells (net, out positive), and the
+// work p theta_f u A dt the gas at those faces does on the outside (the conservative energy form's
+// face work). Every face: the impulse of the face pressure on the cells' materials, gas and solid,
+// theta_m p_f A dt (the sources' momentum term at a domain face, towards the inside).
+struct IceBoundaryBudget {
+  PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0; // kg, kg m/s, J
+  PetscReal work = 0;                                       // J
+  PetscReal impulse[3] = {0, 0, 0};                         // N s
+};
+// Values per material that the advection's face loop adds for the domain faces: the flux of the
+// density and of the nq advected quantities (at most 1 + dim + 2), per unit cell volume.
+inline constexpr int kIceBoundaryFluxes = 6;
+
 struct IceSolver {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscInt dim = 2;
@@ -144,6 +159,11 @@ struct IceSolver {
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
+  IceBoundaryBudget boundary; // cumulative (this rank), see IceBoundaryBudget
+  // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
+  // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
+  PetscReal *boundary_flux_sink = nullptr;
+  PetscReal  boundary_flux[kIceMaxMaterials][kIceBoundaryFluxes] = {};
 
   PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;
 
@@ -212,7 +232,13 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
 // out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
 // temperature, specific volume). The arrays are overwritten for owned cells.
 void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
-PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t); // gases only
+// Gases only; internal energy rho_m V e(rho_micro = 1/spvol, T) with the cold energy of the EOS.
+PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
+// The budget of the domain faces (diagnostics.cxx, IceBoundaryBudget): after IceSources (before the
+// advection changes the densities the face pressures are weighted with), the face work at open faces
+// and the face-pressure impulse; after IceAdvect, the open faces' fluxes of that advection.
+PetscErrorCode IceBudgetFaces(IceSolver &ice);
+PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that
 // the gases fill what the solids leave at the start (ice.md 8).
 PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction);
