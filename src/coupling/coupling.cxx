@@ -313,7 +313,11 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
           const PetscInt m = c.first + s;
           const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
           c.counters[kHeatToSolidCells] += M * ice.materials[m].eos->cv * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
-          for (PetscInt d = 0; d < dim; ++d) c.counters[kMomentumToSolidCells + d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscReal u = cl[ice.Offset(m, icef::vel + d)], uL = cl[ice.Offset(m, icef::vel_L + d)];
+            c.counters[kMomentumToSolidCells + d] += M * (uL - u);
+            c.counters[kKineticToSolidCells] += 0.5 * M * (uL * uL - u * u);
+          }
         }
       }
   PetscInt l = 0;
@@ -351,6 +355,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
             c.counters[kMomentumToNodes + d] += m_node * given;
             if (value != given) sim.diag.bc_impulse[d] += m_node * (value - given);
             ni[d] = value;
+            c.counters[kKineticToNodes] += m_node * (vel[l * vdof + f * 2 * dim + dim + d] + 0.5 * value) * value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
             if (value != 0) g.velocity_written[l] = 1;       // (the next grid update must zero it if the node is empty)
           }

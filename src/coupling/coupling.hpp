@@ -49,7 +49,9 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim);
 // the heat the exchange gave the solids' cell materials (M_s c_v,s (T_L - T)), the reactant's
 // thermal energy the products received (dm c_v,s T_s at the cell's solid temperature), and the
 // momentum the cells' sources and exchange gave the solids (M_s (u_L - u)) against what the nodes
-// received of it (m_I dv_I, before the face conditions hold it back).
+// received of it (m_I dv_I, before the face conditions hold it back), and the kinetic energy the same
+// increments give the solids in the cells (M_s (|u_L|^2 - |u|^2)/2) and at the nodes (m_I (|v + dv|^2
+// - |v|^2)/2 with the increments the nodes keep).
 enum CouplingCounter : int {
   kBurntParticleMass,
   kBurntParticleEnergy,
@@ -61,7 +63,9 @@ enum CouplingCounter : int {
   kReactantThermalCells,
   kMomentumToSolidCells, // 3 values
   kMomentumToNodes = kMomentumToSolidCells + 3, // 3 values
-  kNumCouplingCounters = kMomentumToNodes + 3
+  kKineticToSolidCells = kMomentumToNodes + 3,
+  kKineticToNodes,
+  kNumCouplingCounters
 };
 PetscReal *CouplingCounters(Simulation &sim); // kNumCouplingCounters values
 

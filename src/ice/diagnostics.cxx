@@ -60,6 +60,40 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
     return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
   };
   const PetscReal V = ice.CellVolume();
+  // Two transfers that are not the domain's faces, for the budgets' report: the solids' kinetic energy
+  // from IceSources' -dt theta_s grad p, and the gases' face work that only one side of an interior face
+  // books (IceSources leaves it out in a cell where the gas is a trace, as in a cell a solid fills): the
+  // conservative form's face work cancels between two cells only where both book it.
+  auto booked = [&](const PetscScalar *c, PetscInt m) { return ice.conservative_energy && c[ice.Offset(m, icef::theta)] >= ice.trace_fraction; };
+  if (ice.nmat > 1)
+    for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+      for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+        for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+          const PetscInt     idx = ice.LocalIndex(i, j, k);
+          const PetscScalar *c   = a + idx * S;
+          const PetscInt     ijk[3] = {i, j, k};
+          PetscReal          grad_p[3] = {0, 0, 0};
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscInt  L = idx - ice.lstride[d];
+            const PetscReal p_lower = face_pressure(L, idx);
+            grad_p[d] = (face_pressure(idx, idx + ice.lstride[d]) - p_lower) / ice.h[d];
+            if (ijk[d] == 0) continue; // a domain face: the boundary budget's
+            for (PetscInt m = 0; m < ice.ngas; ++m) { // the lower face of this cell (every interior face once)
+              const bool bL = booked(a + L * S, m), bR = booked(c, m);
+              if (bL == bR) continue;
+              const PetscReal u       = ice.face_vel[d][idx * n + m];
+              const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : c[ice.Offset(m, icef::theta)];
+              ice.gas_interface_work += (bR ? 1 : -1) * ice.dt * V / ice.h[d] * p_lower * theta_f * u;
+            }
+          }
+          for (PetscInt m = ice.ngas; m < n; ++m) {
+            const PetscReal rho = c[ice.Offset(m, icef::rho)], theta = c[ice.Offset(m, icef::theta)];
+            for (PetscInt d = 0; d < ice.dim; ++d) {
+              const PetscReal source = -ice.dt * theta * grad_p[d]; // momentum per volume
+              ice.solid_pressure_work += V * source * (c[ice.Offset(m, icef::vel + d)] + 0.5 * source / rho);
+            }
+          }
+        }
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) {
       if (!(s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d])) continue; // not this rank's face

@@ -46,7 +46,8 @@ static void CellExchange(IceSolver &ice, PetscScalar *a)
           PetscReal heat_capacity = 0;
           for (PetscInt m = 0; m < N; ++m) heat_capacity += c[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv;
           for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] += PetscMax(dissipated, 0.0) / heat_capacity;
-        }
+          ice.drag_energy_change += ice.CellVolume() * (PetscMax(dissipated, 0.0) - dissipated); // (the budgets)
+        } else ice.drag_energy_change -= ice.CellVolume() * dissipated; // the kinetic energy the drag dissipates is dropped
         for (PetscInt m = 0; m < N; ++m)
           for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
         E.Factor(beta);

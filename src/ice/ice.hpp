@@ -160,6 +160,9 @@ struct IceSolver {
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
   IceBoundaryBudget boundary; // cumulative (this rank), see IceBoundaryBudget
+  PetscReal drag_energy_change = 0; // J, this rank: the total energy the cell exchange's drag created (< 0: dropped), in the cells' view
+  PetscReal solid_pressure_work = 0; // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
+  PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
   // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
   PetscReal *boundary_flux_sink = nullptr;
@@ -236,7 +239,9 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
 // The budget of the domain faces (diagnostics.cxx, IceBoundaryBudget): after IceSources (before the
 // advection changes the densities the face pressures are weighted with), the face work at open faces
-// and the face-pressure impulse; after IceAdvect, the open faces' fluxes of that advection.
+// and the face-pressure impulse, and with several materials the work of the pressure source on the
+// solids (solid_pressure_work) and the face work booked on one side only (gas_interface_work); after
+// IceAdvect, the open faces' fluxes of that advection.
 PetscErrorCode IceBudgetFaces(IceSolver &ice);
 PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that

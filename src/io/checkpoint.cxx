@@ -69,7 +69,10 @@ enum RankValue : int {
   kBoundaryBudget,                      // the gas's IceBoundaryBudget: mass, momentum (3), energy, work, impulse (3)
   kRemovedMomentum = kBoundaryBudget + 9, // 3
   kBcImpulse = kRemovedMomentum + 3,      // 3
-  kCouplingCounters = kBcImpulse + 3,     // the coupling's budget counters
+  kDragEnergyChange = kBcImpulse + 3,     // the gas's drag_energy_change and solid_pressure_work
+  kSolidPressureWork,
+  kGasInterfaceWork,
+  kCouplingCounters,                      // the coupling's budget counters
   kNumRankValues = kCouplingCounters + kNumCouplingCounters
 };
 
@@ -234,6 +237,9 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
     const IceBoundaryBudget &f = sim.ice->boundary;
     const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
     for (int k = 0; k < 9; ++k) mine[kBoundaryBudget + k] = values[k];
+    mine[kDragEnergyChange]  = sim.ice->drag_energy_change;
+    mine[kSolidPressureWork] = sim.ice->solid_pressure_work;
+    mine[kGasInterfaceWork]  = sim.ice->gas_interface_work;
   }
   for (int d = 0; d < 3; ++d) {
     mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
@@ -610,6 +616,9 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     f.energy = mine[kBoundaryBudget + 4];
     f.work   = mine[kBoundaryBudget + 5];
     for (int d = 0; d < 3; ++d) f.impulse[d] = mine[kBoundaryBudget + 6 + d];
+    sim.ice->drag_energy_change  = mine[kDragEnergyChange];
+    sim.ice->solid_pressure_work = mine[kSolidPressureWork];
+    sim.ice->gas_interface_work  = mine[kGasInterfaceWork];
   }
   for (int d = 0; d < 3; ++d) {
     sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];

@@ -169,6 +169,10 @@ struct Budget {
   PetscReal open_energy = 0, open_work = 0, removed_energy = 0, external_work = 0, chemical = 0;
   PetscReal heat_to_solid_cells = 0, reactant_thermal_cells = 0; // the cells' view of two transfers (not in the sums)
   PetscReal momentum_to_solid_cells[3] = {0, 0, 0}, momentum_to_nodes[3] = {0, 0, 0}; // the cells' and the nodes' view of the solids' momentum from the gas (not in the sums)
+  PetscReal kinetic_to_solid_cells = 0, kinetic_to_nodes = 0;                          // and of the kinetic energy it brings
+  PetscReal drag_energy_change = 0; // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
+  PetscReal solid_pressure_work = 0; // the kinetic energy the cells' pressure source gives the solids (not in the sums)
+  PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
   PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
   PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;  // relative to the largest term
@@ -180,7 +184,7 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kCoupling = 16, kCount = kCoupling + kNumCouplingCounters };
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kCoupling = 19, kCount = kCoupling + kNumCouplingCounters };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
@@ -194,6 +198,9 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   local[kOpen + 4]    = f.energy;
   local[kOpen + 5]    = f.work;
   local[kRemovedMass] = sim.diag.removed_mass;
+  local[kDrag]        = sim.ice->drag_energy_change;
+  local[kPressureWork] = sim.ice->solid_pressure_work;
+  local[kInterfaceWork] = sim.ice->gas_interface_work;
   if (sim.coupling)
     for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
@@ -223,6 +230,11 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.chemical          = burnt[kChemicalEnergy];
   b.heat_to_solid_cells    = burnt[kHeatToSolidCells];
   b.reactant_thermal_cells = burnt[kReactantThermalCells];
+  b.drag_energy_change     = global[kDrag];
+  b.solid_pressure_work    = global[kPressureWork];
+  b.gas_interface_work     = global[kInterfaceWork];
+  b.kinetic_to_solid_cells = burnt[kKineticToSolidCells];
+  b.kinetic_to_nodes       = burnt[kKineticToNodes];
   for (int d = 0; d < 3; ++d) {
     b.momentum_to_solid_cells[d] = burnt[kMomentumToSolidCells + d];
     b.momentum_to_nodes[d]       = burnt[kMomentumToNodes + d];
@@ -316,7 +328,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                         ",solid_face_impulse_x,solid_face_impulse_y,solid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                         ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells");
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
@@ -379,6 +391,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       std::fprintf(csv, ",%.6e", (double)b.momentum_error);
       for (PetscReal v : {b.heat_to_particles, b.reactant_thermal, b.open_energy, b.open_work, b.removed_energy, b.chemical, b.energy}) std::fprintf(csv, ",%.16e", (double)v);
       std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
+      std::fprintf(csv, ",%.16e", (double)b.gas_interface_work);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
@@ -511,7 +525,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"external_work\": " << b.external_work << ", \"chemical\": " << b.chemical;
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
-    s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells << "}\n";
+    s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << "}\n";
     s << "  },\n";
   }
   if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
