@@ -43,7 +43,7 @@ def budget_lines(s):
     print(f"  mass: particles {m['particles']:.6g} kg, gas {m['gas']:.6g}, out through open faces {m['open_faces']:.6g}, removed particles {m['removed_particles']:.6g};"
           f" residual {m['residual']:.3e} kg, error {m['error']:.3e}")
     print(f"  momentum: particles {p['particles']}, gas {p['gas']}, open faces {p['open_faces']}, face pressure impulse {p['face_pressure_impulse']},"
-          f" grid faces on the particles {p['solid_face_impulse']}, removed {p['removed_particles']}; residual {p['residual']}, error {p['error']:.3e}")
+          f" grid faces on the particles {p['grid_face_impulse']}, removed {p['removed_particles']}; residual {p['residual']}, error {p['error']:.3e}")
     print(f"  energy [J]: particles kinetic {e['particles_kinetic']:.6g}, stress work {e['particles_internal']:.6g}, heat from the gas {e['heat_to_particles']:.6g},"
           f" reactant's thermal energy to the gas {e['reactant_thermal']:.6g}; gas kinetic {e['gas_kinetic']:.6g}, internal {e['gas_internal']:.6g};"
           f" out through open faces {e['open_faces']:.6g} + work {e['open_face_work']:.6g}; removed particles {e['removed_particles']:.6g};"
@@ -67,9 +67,18 @@ def transfers(s):
     work, interface = e["solid_pressure_work"], e["gas_interface_work"]
     print(f"  pressure work: the cells' source -theta_s grad p gave the solids {work:+.6g} J of kinetic energy;"
           f" the gases' face work booked on one side of a face only (a trace on the other) {interface:+.6g} J")
-    rest = e["residual"] - heat - thermal - kinetic - drag - work - interface
+    advection, fallback, trace = e["advection_energy_change"], e["fallback_energy_change"], e["trace_energy_change"]
+    sources = fallback + trace
+    print(f"  the gases' energy made by the advection (dual-energy fallbacks, trace resets) {advection:+.6g} J; by the sources beyond"
+          f" their conservative terms: -p dV fallbacks {fallback:+.6g} J, traces (pressure acceleration without work) {trace:+.6g} J")
+    own = e["particles_kinetic"] + e["particles_internal"] + e["burnt_particles"] + e["removed_particles"] - e["kinetic_to_nodes"] - e["external_work"]
+    print(f"  the particles' kinetic energy + stress work beyond the gas's increments at the nodes {own:+.6g} J (the work of the gas pressure"
+          f" they carry in their stress, sigma + (p - p_ref) I, and MPM's own remainder); burning took {e['burnt_particles']:.6g} J of it"
+          f" to no term of the gas (which receives dm u^2/2 at the cell's velocity)")
+    rest = e["residual"] - heat - thermal - kinetic - drag - work - interface - advection - sources
     print(f"  energy residual {e['residual']:.6g} J = heat {heat:+.6g} + reactant thermal {thermal:+.6g} + kinetic {kinetic:+.6g} + drag {drag:+.6g}"
-          f" + pressure work on the solids' cells {work:+.6g} + one-sided gas face work {interface:+.6g} + the rest {rest:+.6g} J"
+          f" + pressure work on the solids' cells {work:+.6g} + one-sided gas face work {interface:+.6g} + advection {advection:+.6g}"
+          f" + sources {sources:+.6g} + the rest {rest:+.6g} J"
           + (f" ({rest / e['chemical']:+.4f} of the chemical energy)" if e["chemical"] > 0 else ""))
 
 
@@ -96,6 +105,9 @@ def gas_open(args):
         check(f"{name}: max |energy budget error| over the run", float(np.abs(m["balance_error"]).max()), args.tol, failures)
         check(f"{name}: max momentum budget error over the run", float(np.abs(m["momentum_budget_error"]).max()), args.tol, failures)
         check(f"{name}: summary energy_balance_error = the budget's", abs(s["energy_balance_error"] - s["budget"]["energy"]["error"]), 0.0, failures)
+        e = s["budget"]["energy"]  # the diagnostics of the residual's parts: nothing to find here
+        for key in ("advection_energy_change", "fallback_energy_change", "trace_energy_change", "gas_interface_work"):
+            check(f"{name}: |{key}| / largest term", abs(e[key]) / e["largest_term"], args.tol, failures)
     finish(f"gas_open[{args.ranks} rank(s)]", failures)
 
 
@@ -146,7 +158,7 @@ def exploding(args):
     # every budget column of monitor.csv, relative to its budget's largest term at that row
     groups = {
         "mass": (["mass", "gas_mass", "open_face_mass", "removed_particle_mass"], None),
-        "momentum": ([f"{k}_{d}" for k in ("momentum", "gas_momentum", "open_face_momentum", "face_pressure_impulse", "solid_face_impulse",
+        "momentum": ([f"{k}_{d}" for k in ("momentum", "gas_momentum", "open_face_momentum", "face_pressure_impulse", "grid_face_impulse",
                                           "removed_particle_momentum", "momentum_budget_residual") for d in "xy"], None),
         "energy": (["kinetic", "internal", "heat_to_particles", "reactant_thermal_energy", "gas_kinetic_energy", "gas_internal_energy",
                     "open_face_energy", "open_face_work", "removed_particle_energy", "chemical_energy", "budget_energy", "energy_budget_residual"], "energy_budget_scale"),

@@ -48,6 +48,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
   const PetscScalar *a;
   const PetscInt     S = ice.stride, n = ice.nmat;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(ice.local, &a));
   // the face pressure of IceSources (sources.cxx), the same expression on the same cells
   auto face_pressure = [&](PetscInt L, PetscInt R) {
@@ -60,40 +61,60 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
     return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
   };
   const PetscReal V = ice.CellVolume();
-  // Two transfers that are not the domain's faces, for the budgets' report: the solids' kinetic energy
-  // from IceSources' -dt theta_s grad p, and the gases' face work that only one side of an interior face
-  // books (IceSources leaves it out in a cell where the gas is a trace, as in a cell a solid fills): the
-  // conservative form's face work cancels between two cells only where both book it.
+  // One pass over the owned cells for the budgets' report (not their sums): the solids' kinetic energy
+  // from IceSources' -dt theta_s grad p; the gases' face work that only one side of an interior face
+  // books (IceSources leaves it out where the gas is a trace, as in a cell a solid fills: the
+  // conservative form's face work cancels between two cells only where both book it); and what
+  // IceSources gave each gas beyond its conservative terms, its total energy change M_L (c_v T_L +
+  // |u_L|^2/2) - M (c_v T + |u|^2/2) less the converted mass's energy and kinetic energy and less the
+  // face work it books: in a cell that books it, a -p dV fallback; elsewhere a trace's pressure
+  // acceleration without work.
   auto booked = [&](const PetscScalar *c, PetscInt m) { return ice.conservative_energy && c[ice.Offset(m, icef::theta)] >= ice.trace_fraction; };
-  if (ice.nmat > 1)
-    for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
-      for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
-        for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
-          const PetscInt     idx = ice.LocalIndex(i, j, k);
-          const PetscScalar *c   = a + idx * S;
-          const PetscInt     ijk[3] = {i, j, k};
-          PetscReal          grad_p[3] = {0, 0, 0};
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt     idx = ice.LocalIndex(i, j, k);
+        const PetscScalar *c   = a + idx * S;
+        const PetscInt     ijk[3] = {i, j, k};
+        PetscReal          p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+        for (PetscInt d = 0; d < ice.dim; ++d) {
+          p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
+          p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
+        }
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          const bool here = booked(c, m);
+          PetscReal  work = 0; // per volume, as IceSources
+          for (PetscInt d = 0; d < ice.dim; ++d)
+            for (int side = 0; side < 2; ++side) {
+              const PetscInt  R = side ? idx + ice.lstride[d] : idx, L = R - ice.lstride[d];
+              const PetscReal u = ice.face_vel[d][R * n + m], dw = ice.dt / ice.h[d] * p_face[d][side] * (u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)]) * u;
+              if (here) work -= (side ? 1 : -1) * dw;
+              if (!side && ijk[d] > 0 && booked(a + L * S, m) != here) ice.gas_interface_work += (here ? 1 : -1) * V * dw; // the lower face: every interior face once
+            }
+          const PetscReal cv = ice.materials[m].eos->cv;
+          PetscReal       u2 = 0, uL2 = 0, converted = 0;
           for (PetscInt d = 0; d < ice.dim; ++d) {
-            const PetscInt  L = idx - ice.lstride[d];
-            const PetscReal p_lower = face_pressure(L, idx);
-            grad_p[d] = (face_pressure(idx, idx + ice.lstride[d]) - p_lower) / ice.h[d];
-            if (ijk[d] == 0) continue; // a domain face: the boundary budget's
-            for (PetscInt m = 0; m < ice.ngas; ++m) { // the lower face of this cell (every interior face once)
-              const bool bL = booked(a + L * S, m), bR = booked(c, m);
-              if (bL == bR) continue;
-              const PetscReal u       = ice.face_vel[d][idx * n + m];
-              const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : c[ice.Offset(m, icef::theta)];
-              ice.gas_interface_work += (bR ? 1 : -1) * ice.dt * V / ice.h[d] * p_lower * theta_f * u;
-            }
+            u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
+            uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
           }
-          for (PetscInt m = ice.ngas; m < n; ++m) {
-            const PetscReal rho = c[ice.Offset(m, icef::rho)], theta = c[ice.Offset(m, icef::theta)];
-            for (PetscInt d = 0; d < ice.dim; ++d) {
-              const PetscReal source = -ice.dt * theta * grad_p[d]; // momentum per volume
-              ice.solid_pressure_work += V * source * (c[ice.Offset(m, icef::vel + d)] + 0.5 * source / rho);
-            }
+          if (ice.has_mass_source) { // as IceSources: the energy source and the kinetic energy of the mass gained
+            const PetscReal  dr  = ice.mass_source[idx * n + m];
+            const PetscReal *dmv = &ice.momentum_source[(idx * n + m) * 3];
+            converted            = ice.energy_source[idx * n + m];
+            for (PetscInt d = 0; d < 3 && dr > 0; ++d) converted += 0.5 * dmv[d] * dmv[d] / dr;
+          }
+          const PetscReal made = V * (c[ice.Offset(m, icef::rho_L)] * (cv * c[ice.Offset(m, icef::temp_L)] + 0.5 * uL2) - c[ice.Offset(m, icef::rho)] * (cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) - converted - work);
+          if (here) ice.fallback_energy_change += made;
+          else ice.trace_energy_change += made;
+        }
+        for (PetscInt m = ice.ngas; m < n; ++m) {
+          const PetscReal rho = c[ice.Offset(m, icef::rho)], theta = c[ice.Offset(m, icef::theta)];
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscReal source = -ice.dt * theta * (p_face[d][1] - p_face[d][0]) / ice.h[d]; // momentum per volume
+            ice.solid_pressure_work += V * source * (c[ice.Offset(m, icef::vel + d)] + 0.5 * source / rho);
           }
         }
+      }
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) {
       if (!(s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d])) continue; // not this rank's face
@@ -123,22 +144,50 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
           }
     }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
 {
+  const PetscScalar *a;
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
   const PetscReal V = ice.CellVolume();
+  PetscReal       out = 0; // the energy this advection carried out
   for (PetscInt m = 0; m < ice.ngas; ++m) {
     PetscReal *f = ice.boundary_flux[m]; // density, momentum (dim), energy (or temperature) over c_v, ...
     ice.boundary.mass += V * f[0];
     for (PetscInt d = 0; d < ice.dim; ++d) ice.boundary.momentum[d] += V * f[1 + d];
     // total energy: c_v T + |u|^2/2 is what the advection carries (with -ice_advect_total_energy 0 the
     // internal energy c_v T only: that form does not conserve the total)
-    ice.boundary.energy += V * ice.materials[m].eos->cv * f[1 + ice.dim];
+    out += V * ice.materials[m].eos->cv * f[1 + ice.dim];
     for (int q = 0; q < kIceBoundaryFluxes; ++q) f[q] = 0;
   }
+  ice.boundary.energy += out;
+  // what the advection did not conserve: the total energy M (c_v T + |u|^2/2) after it, plus what left,
+  // less the Lagrangian one it advected (the L fields are still there); the conservative remap changes
+  // it by round-off, its dual-energy fallbacks and trace resets by what they replace
+  PetscReal change = out;
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          const PetscReal cv = ice.materials[m].eos->cv;
+          PetscReal       u2 = 0, uL2 = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
+            uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+          }
+          change -= V * c[ice.Offset(m, icef::rho_L)] * (cv * c[ice.Offset(m, icef::temp_L)] + 0.5 * uL2);
+          change += V * c[ice.Offset(m, icef::rho)] * (cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2);
+        }
+      }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  ice.advection_energy_change += change;
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -163,12 +163,15 @@ struct IceSolver {
   PetscReal drag_energy_change = 0; // J, this rank: the total energy the cell exchange's drag created (< 0: dropped), in the cells' view
   PetscReal solid_pressure_work = 0; // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
   PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
+  PetscReal advection_energy_change = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
+  PetscReal fallback_energy_change = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
+  PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
   // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
   PetscReal *boundary_flux_sink = nullptr;
   PetscReal  boundary_flux[kIceMaxMaterials][kIceBoundaryFluxes] = {};
 
-  PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;
+  PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt, ev_budget;
 
   PetscInt Offset(PetscInt m, PetscInt f) const { return m * icef::kMatFields + f; }
   PetscInt CellOffset(PetscInt f) const { return nmat * icef::kMatFields + f; }
@@ -240,8 +243,10 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
 // The budget of the domain faces (diagnostics.cxx, IceBoundaryBudget): after IceSources (before the
 // advection changes the densities the face pressures are weighted with), the face work at open faces
 // and the face-pressure impulse, and with several materials the work of the pressure source on the
-// solids (solid_pressure_work) and the face work booked on one side only (gas_interface_work); after
-// IceAdvect, the open faces' fluxes of that advection.
+// solids (solid_pressure_work) and the face work booked on one side only (gas_interface_work), and
+// the energy IceSources did not conserve (fallback_energy_change, trace_energy_change); after
+// IceAdvect, the open faces' fluxes of that advection and the energy it did not conserve
+// (advection_energy_change).
 PetscErrorCode IceBudgetFaces(IceSolver &ice);
 PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that

@@ -72,6 +72,9 @@ enum RankValue : int {
   kDragEnergyChange = kBcImpulse + 3,     // the gas's drag_energy_change and solid_pressure_work
   kSolidPressureWork,
   kGasInterfaceWork,
+  kAdvectionEnergyChange,
+  kFallbackEnergyChange,
+  kTraceEnergyChange,
   kCouplingCounters,                      // the coupling's budget counters
   kNumRankValues = kCouplingCounters + kNumCouplingCounters
 };
@@ -240,6 +243,9 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
     mine[kDragEnergyChange]  = sim.ice->drag_energy_change;
     mine[kSolidPressureWork] = sim.ice->solid_pressure_work;
     mine[kGasInterfaceWork]  = sim.ice->gas_interface_work;
+    mine[kAdvectionEnergyChange] = sim.ice->advection_energy_change;
+    mine[kFallbackEnergyChange]  = sim.ice->fallback_energy_change;
+    mine[kTraceEnergyChange]     = sim.ice->trace_energy_change;
   }
   for (int d = 0; d < 3; ++d) {
     mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
@@ -619,6 +625,9 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     sim.ice->drag_energy_change  = mine[kDragEnergyChange];
     sim.ice->solid_pressure_work = mine[kSolidPressureWork];
     sim.ice->gas_interface_work  = mine[kGasInterfaceWork];
+    sim.ice->advection_energy_change = mine[kAdvectionEnergyChange];
+    sim.ice->fallback_energy_change  = mine[kFallbackEnergyChange];
+    sim.ice->trace_energy_change     = mine[kTraceEnergyChange];
   }
   for (int d = 0; d < 3; ++d) {
     sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];

@@ -173,6 +173,9 @@ struct Budget {
   PetscReal drag_energy_change = 0; // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
   PetscReal solid_pressure_work = 0; // the kinetic energy the cells' pressure source gives the solids (not in the sums)
   PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
+  PetscReal advection_energy_change = 0; // the gases' energy the advection did not conserve (not in the sums)
+  PetscReal fallback_energy_change = 0, trace_energy_change = 0; // and the sources: -p dV fallbacks, traces (not in the sums)
+  PetscReal burnt_particle_energy = 0;   // the kinetic energy and stress work burning took from the particles (not in the sums)
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
   PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
   PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;  // relative to the largest term
@@ -184,62 +187,69 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kCoupling = 19, kCount = kCoupling + kNumCouplingCounters };
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kCoupling = 22, kCount = kCoupling + kNumCouplingCounters };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
   local[kOpen] = f.mass;
   for (int d = 0; d < 3; ++d) {
-    local[kOpen + 1 + d]          = f.momentum[d];
-    local[kOpen + 6 + d]          = f.impulse[d];
-    local[kRemovedMomentum + d]   = sim.diag.removed_momentum[d];
-    local[kBcImpulse + d]         = sim.diag.bc_impulse[d];
+    local[kOpen + 1 + d]        = f.momentum[d];
+    local[kOpen + 6 + d]        = f.impulse[d];
+    local[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
+    local[kBcImpulse + d]       = sim.diag.bc_impulse[d];
   }
-  local[kOpen + 4]    = f.energy;
-  local[kOpen + 5]    = f.work;
-  local[kRemovedMass] = sim.diag.removed_mass;
-  local[kDrag]        = sim.ice->drag_energy_change;
-  local[kPressureWork] = sim.ice->solid_pressure_work;
+  local[kOpen + 4]      = f.energy;
+  local[kOpen + 5]      = f.work;
+  local[kRemovedMass]   = sim.diag.removed_mass;
+  local[kDrag]          = sim.ice->drag_energy_change;
+  local[kPressureWork]  = sim.ice->solid_pressure_work;
   local[kInterfaceWork] = sim.ice->gas_interface_work;
+  local[kAdvection]     = sim.ice->advection_energy_change;
+  local[kFallback]      = sim.ice->fallback_energy_change;
+  local[kTrace]         = sim.ice->trace_energy_change;
   if (sim.coupling)
     for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
-  const PetscReal *burnt = global + kCoupling;
+  const PetscReal *counter = global + kCoupling; // the coupling's (coupling.hpp)
   b.solid_mass   = r.mass;
   b.gas_mass     = gas.mass;
   b.open_mass    = global[kOpen];
-  b.removed_mass = global[kRemovedMass] - burnt[kBurntParticleMass]; // burnt mass went to the gas
+  b.removed_mass = global[kRemovedMass] - counter[kBurntParticleMass]; // burnt mass went to the gas
   for (int d = 0; d < 3; ++d) {
     b.solid_momentum[d]   = r.momentum[d];
     b.gas_momentum[d]     = gas.momentum[d];
     b.open_momentum[d]    = global[kOpen + 1 + d];
     b.face_impulse[d]     = global[kOpen + 6 + d];
     b.bc_impulse[d]       = global[kBcImpulse + d];
-    b.removed_momentum[d] = global[kRemovedMomentum + d] - burnt[kBurntParticleMomentum + d];
+    b.removed_momentum[d] = global[kRemovedMomentum + d] - counter[kBurntParticleMomentum + d];
   }
   b.solid_kinetic     = r.kinetic;
   b.solid_internal    = r.internal;
-  b.heat_to_particles = burnt[kHeatToParticles];
-  b.reactant_thermal  = burnt[kBurntParticleThermal];
+  b.heat_to_particles = counter[kHeatToParticles];
+  b.reactant_thermal  = counter[kBurntParticleThermal];
   b.gas_kinetic       = gas.kinetic_energy;
   b.gas_internal      = gas.internal_energy;
   b.open_energy       = global[kOpen + 4];
   b.open_work         = global[kOpen + 5];
-  b.removed_energy    = r.removed - burnt[kBurntParticleEnergy];
+  b.removed_energy    = r.removed - counter[kBurntParticleEnergy];
   b.external_work     = r.external_work;
-  b.chemical          = burnt[kChemicalEnergy];
-  b.heat_to_solid_cells    = burnt[kHeatToSolidCells];
-  b.reactant_thermal_cells = burnt[kReactantThermalCells];
-  b.drag_energy_change     = global[kDrag];
-  b.solid_pressure_work    = global[kPressureWork];
-  b.gas_interface_work     = global[kInterfaceWork];
-  b.kinetic_to_solid_cells = burnt[kKineticToSolidCells];
-  b.kinetic_to_nodes       = burnt[kKineticToNodes];
+  b.chemical          = counter[kChemicalEnergy];
+  b.heat_to_solid_cells     = counter[kHeatToSolidCells];
+  b.reactant_thermal_cells  = counter[kReactantThermalCells];
+  b.drag_energy_change      = global[kDrag];
+  b.solid_pressure_work     = global[kPressureWork];
+  b.gas_interface_work      = global[kInterfaceWork];
+  b.advection_energy_change = global[kAdvection];
+  b.fallback_energy_change  = global[kFallback];
+  b.trace_energy_change     = global[kTrace];
+  b.burnt_particle_energy   = counter[kBurntParticleEnergy];
+  b.kinetic_to_solid_cells  = counter[kKineticToSolidCells];
+  b.kinetic_to_nodes        = counter[kKineticToNodes];
   for (int d = 0; d < 3; ++d) {
-    b.momentum_to_solid_cells[d] = burnt[kMomentumToSolidCells + d];
-    b.momentum_to_nodes[d]       = burnt[kMomentumToNodes + d];
+    b.momentum_to_solid_cells[d] = counter[kMomentumToSolidCells + d];
+    b.momentum_to_nodes[d]       = counter[kMomentumToNodes + d];
   }
-  b.mass              = b.solid_mass + b.gas_mass + b.open_mass + b.removed_mass;
+  b.mass = b.solid_mass + b.gas_mass + b.open_mass + b.removed_mass;
   for (int d = 0; d < 3; ++d) b.momentum[d] = b.solid_momentum[d] + b.gas_momentum[d] + b.open_momentum[d] + b.removed_momentum[d] - b.face_impulse[d] - b.bc_impulse[d];
   b.energy = b.solid_kinetic + b.solid_internal + b.heat_to_particles - b.reactant_thermal + b.gas_kinetic + b.gas_internal + b.open_energy + b.open_work + b.removed_energy - b.external_work - b.chemical;
   PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
@@ -325,10 +335,10 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     if (sim.ice) // the budgets (ComputeBudget); balance_error is the energy budget's
       std::fprintf(csv, ",open_face_mass,removed_particle_mass,mass_budget_error"
                         ",open_face_momentum_x,open_face_momentum_y,open_face_momentum_z,face_pressure_impulse_x,face_pressure_impulse_y,face_pressure_impulse_z"
-                        ",solid_face_impulse_x,solid_face_impulse_y,solid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
+                        ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                         ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work");
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
@@ -392,7 +402,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       for (PetscReal v : {b.heat_to_particles, b.reactant_thermal, b.open_energy, b.open_work, b.removed_energy, b.chemical, b.energy}) std::fprintf(csv, ",%.16e", (double)v);
       std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
-      std::fprintf(csv, ",%.16e", (double)b.gas_interface_work);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
@@ -516,7 +526,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[0] << ", \"residual\": " << b.mass - init[0] << ", \"largest_term\": " << scale[0] << ", \"error\": " << b.mass_error << "},\n";
     const PetscReal p0[3] = {init[1], init[2], init[3]};
     s << "    \"momentum\": {\"particles\": " << vec(b.solid_momentum) << ", \"gas\": " << vec(b.gas_momentum) << ", \"open_faces\": " << vec(b.open_momentum);
-    s << ", \"face_pressure_impulse\": " << vec(b.face_impulse) << ", \"solid_face_impulse\": " << vec(b.bc_impulse) << ", \"removed_particles\": " << vec(b.removed_momentum);
+    s << ", \"face_pressure_impulse\": " << vec(b.face_impulse) << ", \"grid_face_impulse\": " << vec(b.bc_impulse) << ", \"removed_particles\": " << vec(b.removed_momentum);
     s << ", \"initial\": " << vec(p0) << ", \"residual\": " << vec(b.momentum_residual) << ", \"largest_term\": " << scale[1] << ", \"error\": " << b.momentum_error;
     s << ", \"to_solid_cells\": " << vec(b.momentum_to_solid_cells) << ", \"to_nodes\": " << vec(b.momentum_to_nodes) << "},\n";
     s << "    \"energy\": {\"particles_kinetic\": " << b.solid_kinetic << ", \"particles_internal\": " << b.solid_internal << ", \"heat_to_particles\": " << b.heat_to_particles;
@@ -526,7 +536,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
     s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
-    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << "}\n";
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"burnt_particles\": " << b.burnt_particle_energy << "}\n";
     s << "  },\n";
   }
   if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
