@@ -297,10 +297,15 @@ def plot_budget(outdir, summary, table):
     ax.legend(loc="best", fontsize=8)
     scene = summary.get("scene") or os.path.basename(os.path.normpath(outdir))
     ax.set_title("%s: energy budget" % scene, fontsize=11)
-    axe.plot(t, table["balance_error"], color="tab:red", label="energy", **style)
-    axe.plot(t, col("mass_budget_error"), color="tab:green", label="mass", **style)
+    # scaled by hand, as plot_energy: matplotlib's offset text would sit on the panel above
+    errors = np.concatenate([np.abs(table["balance_error"]), np.abs(col("mass_budget_error"))])
+    errors = errors[np.isfinite(errors)]
+    exponent = int(np.floor(np.log10(errors.max()))) if errors.size and errors.max() > 0 else 0
+    exponent = exponent if exponent < -1 or exponent > 2 else 0
+    axe.plot(t, table["balance_error"] / 10.0 ** exponent, color="tab:red", label="energy", **style)
+    axe.plot(t, col("mass_budget_error") / 10.0 ** exponent, color="tab:green", label="mass", **style)
     axe.axhline(0.0, color="gray", lw=0.8)
-    axe.set_ylabel("budget error\n/ largest term", fontsize=9)
+    axe.set_ylabel("budget error\n/ largest term" + ("\n[×1e%d]" % exponent if exponent else ""), fontsize=9)
     axe.set_xlabel("time [s]")
     axe.legend(fontsize=8)
     axe.grid(True, alpha=0.3)
