@@ -47,6 +47,17 @@ public:
   virtual PetscReal ColdEnergy(PetscReal) const { return 0; }
   // Whether ColdEnergy is not identically zero (the ICE step skips its bookkeeping otherwise).
   virtual bool HasColdEnergy() const { return false; }
+  // The density at pressure p > 0 and specific internal energy e (J/kg), with T = (e - e_cold)/c_v >= 0
+  // (the ICE equilibration at fixed energy); negative if none. The default is Newton on
+  // P(rho, T(rho)) - p from `guess`, safeguarded by bisection, with (dP/drho)_e =
+  // (dP/drho)_T - (dP/dT)_rho (P - T dP/dT)/(rho^2 c_v); models with a closed form override it.
+  virtual PetscReal DensityAtEnergy(PetscReal p, PetscReal e, PetscReal guess) const;
+  // (dP/drho) at fixed e, m^2/s^2
+  PetscReal DpDrhoAtEnergy(PetscReal rho, PetscReal T) const
+  {
+    const GasEOSPoint s = Evaluate(rho, T);
+    return s.dp_drho - s.dp_dT * (s.pressure - T * s.dp_dT) / (rho * rho * cv);
+  }
 
   PetscReal cv = 716; // specific heat at constant volume, J/(kg K)
 

@@ -26,6 +26,12 @@ public:
   }
   PetscReal Temperature(PetscReal rho, PetscReal p) const override { return (p + p_inf) / ((gamma - 1) * cv * rho); }
   PetscReal ColdEnergy(PetscReal rho) const override { return p_inf / rho; }
+  // P = (gamma - 1) rho e - gamma p_inf; T >= 0 holds for every p > -p_inf
+  PetscReal DensityAtEnergy(PetscReal p, PetscReal e, PetscReal) const override
+  {
+    const PetscReal rho = (p + gamma * p_inf) / ((gamma - 1) * e);
+    return (rho > 0 && rho < PETSC_MAX_REAL) ? rho : -1;
+  }
   bool      HasColdEnergy() const override { return p_inf != 0; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override

@@ -260,7 +260,9 @@ PetscErrorCode IceAdvect(IceSolver &ice)
         PetscScalar *c  = a + idx * S;
         PetscReal    u2 = 0;
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
-        c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + 0.5 * u2 / ice.materials[m].eos->cv;
+        // with a cold energy, energy_L holds e_cold/c_v at the Lagrangian state (sources.cxx)
+        const PetscReal cold = ice.materials[m].eos->HasColdEnergy() ? c[ice.Offset(m, icef::energy_L)] : 0;
+        c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + cold + 0.5 * u2 / ice.materials[m].eos->cv;
       }
   // velocity components, then energy (or temperature); with total energy also the temperature, the
   // dual-energy fallback where the kinetic energy is nearly all of it (Bryan et al., Comput. Phys.
@@ -278,6 +280,11 @@ PetscErrorCode IceAdvect(IceSolver &ice)
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
     ice.boundary_flux_sink = nullptr;
     const PetscReal cv = ice.materials[m].eos->cv;
+    // A cold energy (gas_eos.hpp): the temperature is e - e_cold at a specific volume that the next
+    // equilibration keeps e with (it solves at fixed e): one material fills the cell, so its density;
+    // else this step's equilibrated specific volume.
+    const GasEOS   &eos  = *ice.materials[m].eos;
+    const bool      cold = eos.HasColdEnergy() && total;
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
       for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
         for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -299,10 +306,15 @@ PetscErrorCode IceAdvect(IceSolver &ice)
             if (!(T > ice.dual_energy_fraction * E)) { // the internal-energy remap instead
               T = (rho_L * c[q_fields[dim + 1]] + outs[2 + dim][idx]) / rho;
               ++ice.energy_fallbacks;
+              ++ice.energy_fallbacks_remap;
+            } else if (cold) {
+              if (n == 1) c[ice.Offset(m, icef::spvol)] = 1 / rho;
+              T -= eos.ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]) / cv;
             }
             if (!(T > 0) && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) T = c[ice.Offset(m, icef::temp_L)];
           }
-          if (!bad && !(T > 0)) bad = "temperature";
+          if (!bad && !(T > 0) && !cold) bad = "temperature"; // with a cold energy the equilibration checks it
+          if (!bad && !std::isfinite(T)) bad = "temperature";
           for (PetscInt d = 0; d < dim && !bad; ++d)
             if (!std::isfinite(u[d])) bad = "velocity";
           PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": after advection the %s of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") is not positive and finite (density %g kg/m^3, temperature %g K); reduce -ice_cfl", ice.step, bad, ice.materials[m].name.c_str(), i, j, k, (double)rho, (double)T);

@@ -13,19 +13,29 @@
 namespace burst {
 
 namespace {
-// sum theta(p) - 1 and its derivative; rho_micro is written
-PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal p, PetscReal rho_micro[], PetscReal *dfdp)
+// sum theta(p) - 1 and its derivative; rho_micro is written. A gas with a cold energy keeps its
+// specific energy e[m] (so the equilibration conserves energy: gas_eos.hpp), the others their
+// temperature; cold[m] says which (e[m] unused otherwise).
+PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal p, const bool cold[], const PetscReal e[], PetscReal rho_micro[], PetscReal *dfdp)
 {
   PetscReal sum = 0, deriv = 0;
   for (PetscInt m = 0; m < ice.nmat; ++m) {
     const GasEOS   &eos = *ice.materials[m].eos;
-    const PetscReal T   = c[ice.Offset(m, icef::temp)];
     const PetscReal rho = c[ice.Offset(m, icef::rho)];
-    rho_micro[m]        = eos.Density(p, T);
-    if (!(rho_micro[m] > 0)) return NAN;
+    PetscReal       dp_drho;
+    if (cold[m]) {
+      rho_micro[m] = eos.DensityAtEnergy(p, e[m], rho_micro[m] > 0 ? rho_micro[m] : 1 / c[ice.Offset(m, icef::spvol)]);
+      if (!(rho_micro[m] > 0)) return NAN;
+      dp_drho = eos.DpDrhoAtEnergy(rho_micro[m], (e[m] - eos.ColdEnergy(rho_micro[m])) / eos.cv);
+    } else {
+      const PetscReal T = c[ice.Offset(m, icef::temp)];
+      rho_micro[m]      = eos.Density(p, T);
+      if (!(rho_micro[m] > 0)) return NAN;
+      dp_drho = eos.Evaluate(rho_micro[m], T).dp_drho;
+    }
     const PetscReal theta = rho / rho_micro[m];
     sum += theta;
-    deriv -= theta / (rho_micro[m] * eos.Evaluate(rho_micro[m], T).dp_drho);
+    deriv -= theta / (rho_micro[m] * dp_drho);
   }
   if (dfdp) *dfdp = deriv;
   return sum - 1;
@@ -36,23 +46,34 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
 {
   PetscScalar   *a;
   const PetscInt S = ice.stride, n = ice.nmat;
-  PetscReal      rho_micro[kIceMaxMaterials];
+  PetscReal      rho_micro[kIceMaxMaterials], e[kIceMaxMaterials];
+  bool           cold[kIceMaxMaterials], any_cold = false;
   PetscFunctionBeginUser;
+  for (PetscInt m = 0; m < n; ++m) {
+    cold[m]  = !ice.materials[m].solid && ice.materials[m].eos->HasColdEnergy();
+    any_cold = any_cold || cold[m];
+  }
   PetscCall(PetscLogEventBegin(ice.ev_equilibrate, 0, 0, 0, 0));
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscInt ncells = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   for (PetscInt idx = 0; idx < ncells; ++idx) {
     PetscScalar *c = a + idx * S;
     PetscReal    p = c[ice.CellOffset(icef::press)];
+    if (any_cold)
+      for (PetscInt m = 0; m < n; ++m) {
+        rho_micro[m] = -1; // DensityAtEnergy's first guess: the stored specific volume
+        if (cold[m]) e[m] = ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]);
+      }
     if (n == 1) { // one material fills the cell: no solve
       rho_micro[0] = c[ice.Offset(0, icef::rho)];
-      p            = ice.materials[0].eos->Evaluate(rho_micro[0], c[ice.Offset(0, icef::temp)]).pressure;
+      if (cold[0]) c[ice.Offset(0, icef::temp)] = (e[0] - ice.materials[0].eos->ColdEnergy(rho_micro[0])) / ice.materials[0].eos->cv;
+      p = ice.materials[0].eos->Evaluate(rho_micro[0], c[ice.Offset(0, icef::temp)]).pressure;
     } else {
       const PetscReal tol       = 1e-12;
       bool            converged = false;
       for (PetscInt it = 0; it < ice.equilibration_max_iterations && p > 0 && std::isfinite(p); ++it) {
         PetscReal       dfdp;
-        const PetscReal f = VolumeResidual(ice, c, p, rho_micro, &dfdp);
+        const PetscReal f = VolumeResidual(ice, c, p, cold, e, rho_micro, &dfdp);
         if (!std::isfinite(f)) break;
         if (std::fabs(f) < tol) {
           converged = true;
@@ -64,11 +85,11 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       }
       if (!converged) { // bisection on log p: sum theta decreases with p
         PetscReal lo = 1e-6, hi = 1e15, f_lo, f_hi;
-        f_lo = VolumeResidual(ice, c, lo, rho_micro, nullptr);
-        f_hi = VolumeResidual(ice, c, hi, rho_micro, nullptr);
+        f_lo = VolumeResidual(ice, c, lo, cold, e, rho_micro, nullptr);
+        f_hi = VolumeResidual(ice, c, hi, cold, e, rho_micro, nullptr);
         if (f_lo > 0 && f_hi < 0) {
           for (PetscInt it = 0; it < 200; ++it) {
-            const PetscReal mid = std::sqrt(lo * hi), f = VolumeResidual(ice, c, mid, rho_micro, nullptr);
+            const PetscReal mid = std::sqrt(lo * hi), f = VolumeResidual(ice, c, mid, cold, e, rho_micro, nullptr);
             if (!std::isfinite(f)) break;
             if (f > 0) lo = mid;
             else hi = mid;
@@ -86,11 +107,12 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
           SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the equilibration pressure of cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") did not converge (Newton and bisection on [1e-6, 1e15] Pa); state:%s", ice.step, i, j, k, state.c_str());
         }
       }
-      VolumeResidual(ice, c, p, rho_micro, nullptr);
+      VolumeResidual(ice, c, p, cold, e, rho_micro, nullptr);
     }
     PetscReal sum_kappa = 0;
     for (PetscInt m = 0; m < n; ++m) {
-      const GasEOS     &eos = *ice.materials[m].eos;
+      const GasEOS &eos = *ice.materials[m].eos;
+      if (cold[m]) c[ice.Offset(m, icef::temp)] = (e[m] - eos.ColdEnergy(rho_micro[m])) / eos.cv;
       const PetscReal   T   = c[ice.Offset(m, icef::temp)];
       const GasEOSPoint s   = eos.Evaluate(rho_micro[m], T);
       const PetscReal   c2  = s.dp_drho + T * s.dp_dT * s.dp_dT / (rho_micro[m] * rho_micro[m] * eos.cv);

@@ -115,6 +115,7 @@ struct IceSolver {
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
   PetscBool drag_heating = PETSC_TRUE;         // with conservative_energy: the drag's dissipated kinetic energy becomes heat
   PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
+  PetscReal viscosity[2] = {0.5, 1};          // shock viscosity c1 (linear), c2 (quadratic), viscosity.cxx
   PetscReal cfl = 0.25;
   PetscReal sound_speed_knob = -1;   // k_c of the CFL; default 1 explicit, 0.5 semi-implicit
   PetscReal dt_fixed = 0;            // -ice_dt
@@ -156,16 +157,22 @@ struct IceSolver {
   PetscInt  ksp_iterations = 0, outer_iterations = 0; // of the last step
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
   PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy or the internal-energy remap (this rank)
+  PetscInt64 energy_fallbacks_remap = 0; // of those, the internal-energy remap's (advection.cxx; the rest are the sources')
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
   IceBoundaryBudget boundary; // cumulative (this rank), see IceBoundaryBudget
-  PetscReal drag_energy_change = 0; // J, this rank: the total energy the cell exchange's drag created (< 0: dropped), in the cells' view
+  PetscReal exchange_energy_change = 0; // J, this rank: the total energy of every material the cell exchange changed (cells' view; IceBudgetAfterExchange)
+  PetscReal exchange_energy_mark = 0;   // J, this rank: that energy before the exchange (IceBudgetFaces)
+  PetscReal drag_energy_change = 0;     // J, this rank: of it, the kinetic energy the drag removes that no material gets as heat (exchange.cxx)
+  PetscReal exchange_fallback_energy = 0; // J, this rank: of it, what its temperature-form fallbacks changed (exchange.cxx)
   PetscReal solid_pressure_work = 0; // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
   PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
   PetscReal advection_energy_change = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
   PetscReal fallback_energy_change = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
   PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
+  PetscReal equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
+  PetscReal gas_energy_mark = 0;             // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
   // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
   PetscReal *boundary_flux_sink = nullptr;
@@ -238,6 +245,12 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
 // out[1 + q][...] for density * a[q_fields[q]] (mass-specific quantities: velocity components,
 // temperature, specific volume). The arrays are overwritten for owned cells.
 void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[]);
+// The Lagrangian temperature of gas m in the cell c (local index idx) from the temperature form,
+// c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
+// total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
+PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+// Shock viscosity (viscosity.cxx) of the face between local cells R - lstride[d] and R, Pa.
+PetscReal      IceFaceViscosity(const IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt R);
 // Gases only; internal energy rho_m V e(rho_micro = 1/spvol, T) with the cold energy of the EOS.
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
 // The budget of the domain faces (diagnostics.cxx, IceBoundaryBudget): after IceSources (before the
@@ -247,7 +260,11 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
 // the energy IceSources did not conserve (fallback_energy_change, trace_energy_change); after
 // IceAdvect, the open faces' fluxes of that advection and the energy it did not conserve
 // (advection_energy_change).
+// IceBudgetStepStart, first in the step, marks the gases' total energy that the equilibration
+// (equilibration_energy_change) is measured against.
+PetscErrorCode IceBudgetStepStart(IceSolver &ice);
 PetscErrorCode IceBudgetFaces(IceSolver &ice);
+PetscErrorCode IceBudgetAfterExchange(IceSolver &ice); // the exchange's change (exchange_energy_change)
 PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that
 // the gases fill what the solids leave at the start (ice.md 8).

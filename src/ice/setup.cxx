@@ -85,6 +85,18 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCheck(ice.advection_order == 1 || ice.advection_order == 2, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_advection_order = %" PetscInt_FMT " is not supported: valid choices are 1 and 2", ice.advection_order);
   PetscCall(PetscOptionsBool("-ice_compatible_fluxes", "Second order: compatible fluxes for velocity, temperature and specific volume (VanderHeyden & Kashiwa 1998)", "", ice.compatible_fluxes, &ice.compatible_fluxes, nullptr));
   PetscCall(PetscOptionsBool("-ice_conservative_energy", "Lagrangian energy from the work of the face pressures minus the kinetic energy gained (conserves total energy), instead of the reference's -p dV form", "", ice.conservative_energy, &ice.conservative_energy, nullptr));
+  {
+    PetscInt  nv = 2;
+    PetscReal v[2] = {ice.viscosity[0], ice.viscosity[1]};
+    PetscCall(PetscOptionsRealArray("-ice_artificial_viscosity", "Shock viscosity c1,c2 (-, >= 0): q = rho (1 - psi)(c2 du^2 + c1 c |du|) on compressing faces, psi Christensen's limiter (viscosity.cxx); 0,0 off", "", v, &nv, &set));
+    if (set) {
+      PetscCheck(nv == 2, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_artificial_viscosity needs 2 values (c1,c2), got %" PetscInt_FMT, nv);
+      PetscCall(CheckRange(ice.comm, "-ice_artificial_viscosity (c1)", v[0], 0, 100, PETSC_FALSE));
+      PetscCall(CheckRange(ice.comm, "-ice_artificial_viscosity (c2)", v[1], 0, 100, PETSC_FALSE));
+      ice.viscosity[0] = v[0];
+      ice.viscosity[1] = v[1];
+    }
+  }
   PetscCall(PetscOptionsBool("-ice_drag_heating", "With -ice_conservative_energy: the kinetic energy that the momentum exchange removes becomes heat of the cell's materials (false: dropped, as the reference does)", "", ice.drag_heating, &ice.drag_heating, nullptr));
   PetscCall(PetscOptionsBool("-ice_advect_total_energy", "Advect total energy c_v T + |u|^2/2 instead of c_v T, so the kinetic energy the remap averages away becomes heat (the reference advects c_v T only)", "", ice.advect_total_energy, &ice.advect_total_energy, nullptr));
   PetscCall(PetscOptionsReal("-ice_dual_energy_fraction", "With total-energy advection: where the internal energy left is below this fraction of the total, take the separately remapped internal energy instead (dual energy; counted in energy_fallbacks), in [0, 1)", "", ice.dual_energy_fraction, &ice.dual_energy_fraction, nullptr));

@@ -18,6 +18,23 @@
 
 namespace burst {
 
+PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L)
+{
+  const GasEOS   &eos    = *ice.materials[m].eos;
+  const PetscReal theta  = c[ice.Offset(m, icef::theta)], rho = c[ice.Offset(m, icef::rho)], rho_L = c[ice.Offset(m, icef::rho_L)];
+  const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
+  const PetscReal dr     = ice.has_mass_source ? ice.mass_source[idx * ice.nmat + m] : 0;
+  const PetscReal de     = ice.has_mass_source ? ice.energy_source[idx * ice.nmat + m] : 0;
+  const PetscReal pdv    = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
+  if (cold_L && eos.HasColdEnergy()) {
+    // the volume change that the pressure change dp_dil gives, -theta kappa dp_dil, and the
+    // converted mass's
+    const PetscReal theta_L = theta * (1 - c[ice.Offset(m, icef::kappa)] * dp_dil) + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
+    *cold_L                 = eos.ColdEnergy(theta_L > 0 ? rho_L / theta_L : 1 / c[ice.Offset(m, icef::spvol)]);
+  }
+  return (rho * eos.cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * eos.cv);
+}
+
 PetscErrorCode IceSources(IceSolver &ice)
 {
   PetscScalar   *a;
@@ -34,18 +51,26 @@ PetscErrorCode IceSources(IceSolver &ice)
     }
     return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
   };
+  const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
+  // the cell exchange follows and gives each material the kinetic energy its drag removes
+  const bool drag_settles = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscInt idx = ice.LocalIndex(i, j, k);
         PetscScalar   *c   = a + idx * S;
-        PetscReal      grad_p[3] = {0, 0, 0}, p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}; // lower, upper face of each direction
+        // lower, upper face of each direction: pressure, and the shock viscosity the gases feel
+        PetscReal grad_p[3] = {0, 0, 0}, p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, q_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, grad_q[3] = {0, 0, 0};
         for (PetscInt d = 0; d < dim; ++d) {
           p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
           p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
           grad_p[d]    = (p_face[d][1] - p_face[d][0]) / ice.h[d];
+          if (viscous) {
+            q_face[d][0] = IceFaceViscosity(ice, a, d, idx);
+            q_face[d][1] = IceFaceViscosity(ice, a, d, idx + ice.lstride[d]);
+            grad_q[d]    = (q_face[d][1] - q_face[d][0]) / ice.h[d];
+          }
         }
-        const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
           const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
@@ -58,7 +83,7 @@ PetscErrorCode IceSources(IceSolver &ice)
           c[ice.Offset(m, icef::rho_L)] = rho_L;
           PetscReal u2 = 0, uL2 = 0, ke_in = 0;
           for (PetscInt d = 0; d < 3; ++d) {
-            const PetscReal source = d < dim ? -ice.dt * theta * grad_p[d] + ice.dt * rho * ice.gravity[d] : 0;
+            const PetscReal source = d < dim ? -ice.dt * theta * (grad_p[d] + (mat.solid ? 0 : grad_q[d])) + ice.dt * rho * ice.gravity[d] : 0;
             const PetscReal u      = c[ice.Offset(m, icef::vel + d)];
             const PetscReal uL     = (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
             c[ice.Offset(m, icef::vel_L + d)] = uL;
@@ -66,7 +91,9 @@ PetscErrorCode IceSources(IceSolver &ice)
             uL2 += uL * uL;
             if (dmv && dr > 0) ke_in += 0.5 * dmv[d] * dmv[d] / dr;
           }
-          PetscReal T_L;
+          PetscReal  T_L, cold_L = 0; // cold_L: e_cold at the Lagrangian specific volume, J/kg
+          bool       cold_from_faces = false, deferred = false;
+          const bool cold = !mat.solid && mat.eos->HasColdEnergy();
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
           else if (theta < ice.trace_fraction) {
             // a trace of gas (a cell the solids fill): no compression work, which would heat a
@@ -77,31 +104,48 @@ PetscErrorCode IceSources(IceSolver &ice)
             // total energy from the work of the face pressures on the face volume fluxes, plus what
             // the converted mass brings, minus the kinetic energy: conservative, so shocks move at
             // the Rankine-Hugoniot speed
-            PetscReal work = 0;
+            PetscReal work = 0, expansion = 0; // expansion: the material's volume change over V
             for (PetscInt d = 0; d < dim; ++d) {
               const PetscInt faces[2] = {idx, idx + ice.lstride[d]};
               for (int s = 0; s < 2; ++s) {
                 const PetscInt  R = faces[s], L = R - ice.lstride[d];
                 const PetscReal u = ice.face_vel[d][R * n + m];
                 const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
-                work -= (s ? 1 : -1) * ice.dt / ice.h[d] * p_face[d][s] * theta_f * u;
+                const PetscReal volume  = (s ? 1 : -1) * ice.dt / ice.h[d] * theta_f * u;
+                work -= (p_face[d][s] + q_face[d][s]) * volume;
+                expansion += volume;
               }
             }
-            const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
-            T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
-            if (!(T_L > 0)) {
-              // the explicit pressure can accelerate a gas by more than its internal energy in one
-              // step (a burning cell's created volume beside it): keep the -p dV form here and count it
-              const PetscReal pdv = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-              T_L                 = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * mat.eos->cv);
-              ++ice.energy_fallbacks;
+            if (cold) {
+              // e = c_v T + e_cold(rho_micro) (gas_eos.hpp): the work changes e, and the cold part
+              // follows the material's own volume, theta + the face volumes (+ the converted mass's)
+              const PetscReal e_cold  = mat.eos->ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]);
+              const PetscReal theta_L = theta + expansion + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
+              const PetscReal e_cold_L = theta_L > 0 ? mat.eos->ColdEnergy(rho_L / theta_L) : e_cold;
+              const PetscReal total    = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + e_cold + 0.5 * u2) + work + de + ke_in;
+              T_L                      = (total / rho_L - 0.5 * uL2 - e_cold_L) / mat.eos->cv;
+              cold_L                   = e_cold_L;
+              cold_from_faces          = true;
+            } else {
+              const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
+              T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
             }
-          } else {
-            const PetscReal work = theta * c[ice.Offset(m, icef::kappa)] * (c[ice.Offset(m, icef::work_p)] + dp_dil) * dp_dil;
-            T_L                  = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + work + de) / (rho_L * mat.eos->cv);
-          }
-          PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
+            // T_L <= 0: the pressure gradient gave the gas more kinetic energy than it holds. In a
+            // cell that the momentum exchange settles (a gas in a solid's cell, pushed by the
+            // solid's pressure field) the drag gives that energy back (exchange.cxx), which then
+            // checks; alone, keep the -p dV form here and count it
+            if (!(T_L > 0) && !drag_settles) {
+              T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
+              ++ice.energy_fallbacks;
+              cold_from_faces = false;
+            }
+            deferred = !(T_L > 0);
+          } else T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
+          PetscCheck((T_L > 0 || deferred) && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
+          if (cold && !cold_from_faces) IceTemperatureForm(ice, c, idx, m, &cold_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;
+          // the advection's total energy adds T_L and the kinetic energy to this (advection.cxx)
+          if (cold) c[ice.Offset(m, icef::energy_L)] = cold_L / mat.eos->cv;
         }
       }
   PetscCall(IceRestoreLocalArray(ice, &a));

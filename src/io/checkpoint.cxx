@@ -75,6 +75,9 @@ enum RankValue : int {
   kAdvectionEnergyChange,
   kFallbackEnergyChange,
   kTraceEnergyChange,
+  kEquilibrationEnergyChange,
+  kExchangeEnergyChange,
+  kExchangeFallbackEnergy,
   kCouplingCounters,                      // the coupling's budget counters
   kNumRankValues = kCouplingCounters + kNumCouplingCounters
 };
@@ -246,6 +249,9 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
     mine[kAdvectionEnergyChange] = sim.ice->advection_energy_change;
     mine[kFallbackEnergyChange]  = sim.ice->fallback_energy_change;
     mine[kTraceEnergyChange]     = sim.ice->trace_energy_change;
+    mine[kEquilibrationEnergyChange] = sim.ice->equilibration_energy_change;
+    mine[kExchangeEnergyChange]      = sim.ice->exchange_energy_change;
+    mine[kExchangeFallbackEnergy]    = sim.ice->exchange_fallback_energy;
   }
   for (int d = 0; d < 3; ++d) {
     mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
@@ -628,6 +634,9 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     sim.ice->advection_energy_change = mine[kAdvectionEnergyChange];
     sim.ice->fallback_energy_change  = mine[kFallbackEnergyChange];
     sim.ice->trace_energy_change     = mine[kTraceEnergyChange];
+    sim.ice->equilibration_energy_change = mine[kEquilibrationEnergyChange];
+    sim.ice->exchange_energy_change      = mine[kExchangeEnergyChange];
+    sim.ice->exchange_fallback_energy    = mine[kExchangeFallbackEnergy];
   }
   for (int d = 0; d < 3; ++d) {
     sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];

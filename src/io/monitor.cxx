@@ -175,6 +175,8 @@ struct Budget {
   PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
   PetscReal advection_energy_change = 0; // the gases' energy the advection did not conserve (not in the sums)
   PetscReal fallback_energy_change = 0, trace_energy_change = 0; // and the sources: -p dV fallbacks, traces (not in the sums)
+  PetscReal equilibration_energy_change = 0;                      // and the equilibration (not in the sums)
+  PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0; // and the exchange: all of it, its fallbacks' part (the drag's above)
   PetscReal burnt_particle_energy = 0;   // the kinetic energy and stress work burning took from the particles (not in the sums)
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
   PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
@@ -187,7 +189,7 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kCoupling = 22, kCount = kCoupling + kNumCouplingCounters };
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kCoupling = 25, kCount = kCoupling + kNumCouplingCounters };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
@@ -207,6 +209,9 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   local[kAdvection]     = sim.ice->advection_energy_change;
   local[kFallback]      = sim.ice->fallback_energy_change;
   local[kTrace]         = sim.ice->trace_energy_change;
+  local[kEquilibration] = sim.ice->equilibration_energy_change;
+  local[kExchange]      = sim.ice->exchange_energy_change;
+  local[kExchangeFallback] = sim.ice->exchange_fallback_energy;
   if (sim.coupling)
     for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
@@ -242,6 +247,9 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.advection_energy_change = global[kAdvection];
   b.fallback_energy_change  = global[kFallback];
   b.trace_energy_change     = global[kTrace];
+  b.equilibration_energy_change = global[kEquilibration];
+  b.exchange_energy_change      = global[kExchange];
+  b.exchange_fallback_energy    = global[kExchangeFallback];
   b.burnt_particle_energy   = counter[kBurntParticleEnergy];
   b.kinetic_to_solid_cells  = counter[kKineticToSolidCells];
   b.kinetic_to_nodes        = counter[kKineticToNodes];
@@ -338,7 +346,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                         ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                         ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change");
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
@@ -403,6 +411,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
@@ -431,7 +440,9 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscInt64 burnt_particles = 0;
   if (sim.coupling) PetscCall(CouplingSummary(sim, &burnt_mass, &burnt_particles));
   PetscInt64 fallbacks = 0; // cells that fell back to the -p dV energy form
+  PetscInt64 fallbacks_remap = 0; // of those, the advection's internal-energy remap
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks_remap, &fallbacks_remap, 1, MPIU_INT64, MPI_SUM, sim.comm));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
   const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
@@ -510,7 +521,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
     const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
     s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
-    s << ", \"energy_fallbacks\": " << fallbacks << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
+    s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }
   if (sim.ice) { // the budgets (ComputeBudget)
@@ -536,7 +547,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
     s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
-    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"burnt_particles\": " << b.burnt_particle_energy << "}\n";
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"burnt_particles\": " << b.burnt_particle_energy << "}\n";
     s << "  },\n";
   }
   if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
