@@ -6,8 +6,9 @@ burst, prints the measured figures with a verdict (`name: value (tol X) OK|FAIL`
 on failure. ctest calls them (tests/CMakeLists.txt, block 4e).
 
   gas_open   gas only, open faces: Sod with an outflow face at x = 1 run until the shock and the
-             contact have left (t = 0.6), and the quarter blast (blast2d, outflow at x and y max, 50^2
-             cells to t = 0.6); 14-15 % of the gas mass leaves, so the open-face terms are large,
+             contact have left (t = 0.6), the quarter blast (blast2d, outflow at x and y max, 50^2
+             cells to t = 0.6) and the JWL tube (a cold energy) with an outflow face to 4 times its
+             final time; 14-30 % of the gas mass leaves, so the open-face terms are large,
              and the budgets must close to round-off: the open faces count the advection's own face
              fluxes and the face work of the conservative energy form; the diagnostics of the gas
              step's own non-conservation (advection, -p dV fallbacks, traces, one-sided face work)
@@ -94,7 +95,9 @@ def transfers(s):
 def gas_open(args):
     failures = []
     cases = [("sod, outflow at x = 1", "options/scenes/sod.opts", ["-ice_bc_xmax", "outflow", "-final_time", "0.6"]),
-             ("blast2d, 50^2 cells", "options/scenes/blast2d.opts", ["-grid_cells", "50,50", "-final_time", "0.6", "-output_interval", "0"])]
+             ("blast2d, 50^2 cells", "options/scenes/blast2d.opts", ["-grid_cells", "50,50", "-final_time", "0.6", "-output_interval", "0"]),
+             # a cold energy (JWL products): the advection carries c_v T + e_cold + |u|^2/2
+             ("jwl_tube, outflow at x = 1", "tests/decks/jwl_tube.opts", ["-ice_bc_xmax", "outflow", "-final_time", "6.4e-4"])]
     for name, deck, extra in cases:
         out = scratch()
         s = run(args.burst, deck, out, extra + args.extra.split(), ranks=args.ranks)
