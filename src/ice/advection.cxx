@@ -191,10 +191,11 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
 template <int DIM>
 void AdvectionIncrementDim(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscInt density, const PetscInt q_fields[], PetscInt nq, PetscReal *const out[])
 {
-  switch (nq) { // the volume alone; velocity and energy; with the dual-energy temperature
+  switch (nq) { // the volume alone; velocity and energy; with the dual-energy temperature; with the specific volume
   case 0: AdvectionIncrement<DIM, 0>(ice, a, m, density, q_fields, out); break;
   case DIM + 1: AdvectionIncrement<DIM, DIM + 1>(ice, a, m, density, q_fields, out); break;
   case DIM + 2: AdvectionIncrement<DIM, DIM + 2>(ice, a, m, density, q_fields, out); break;
+  case DIM + 3: AdvectionIncrement<DIM, DIM + 3>(ice, a, m, density, q_fields, out); break;
   default: PetscCheckAbort(false, PETSC_COMM_SELF, PETSC_ERR_PLIB, "advection of %" PetscInt_FMT " quantities is not instantiated", nq);
   }
 }
@@ -267,15 +268,29 @@ PetscErrorCode IceAdvect(IceSolver &ice)
   // velocity components, then energy (or temperature); with total energy also the temperature, the
   // dual-energy fallback where the kinetic energy is nearly all of it (Bryan et al., Comput. Phys.
   // Commun. 89 (1995) 149): there E - |u|^2/2 is a small difference of large numbers
-  const PetscInt nq = dim + (total ? 2 : 1);
+  // The gases' specific volume, where the equilibration takes it as their state (the normalized
+  // form, equilibration.cxx): its Lagrangian value v (1 - kappa dp_dil) plus what the converted mass
+  // brings, v dm, per unit Lagrangian mass, is remapped with the mass (Uintah's M v).
+  const bool transport_volume = ice.equilibration_form == IceEquilibrationForm::Normalized && ice.nmat > ice.ngas;
+  if (transport_volume)
+    for (PetscInt idx = 0; idx < nlocal; ++idx)
+      for (PetscInt m = 0; m < ice.ngas; ++m) {
+        PetscScalar    *c     = a + idx * S;
+        const PetscReal v     = c[ice.Offset(m, icef::spvol)], rho_L = c[ice.Offset(m, icef::rho_L)];
+        const PetscReal dr    = ice.has_mass_source ? PetscMax(ice.mass_source[idx * n + m], 0.0) : 0;
+        const PetscReal vol_L = (rho_L - dr) * v * (1 - c[ice.Offset(m, icef::kappa)] * c[ice.CellOffset(icef::dp_dil)]) + dr * v;
+        if (vol_L > 0 && rho_L > 0) c[ice.Offset(m, icef::spvol)] = vol_L / rho_L;
+      }
+  const PetscInt nq = dim + (total ? 2 : 1) + (transport_volume ? 1 : 0);
   ice.work_advect.resize((size_t)nlocal * (nq + 1));
-  PetscReal *outs[6];
+  PetscReal *outs[8];
   for (PetscInt q = 0; q <= nq; ++q) outs[q] = ice.work_advect.data() + (size_t)q * nlocal;
   for (PetscInt m = 0; m < ice.ngas; ++m) { // solids are not advected: the particles carry them
-    PetscInt q_fields[5];
+    PetscInt q_fields[7];
     for (PetscInt d = 0; d < dim; ++d) q_fields[d] = ice.Offset(m, icef::vel_L + d);
     q_fields[dim] = ice.Offset(m, total ? icef::energy_L : icef::temp_L);
     if (total) q_fields[dim + 1] = ice.Offset(m, icef::temp_L);
+    if (transport_volume) q_fields[nq - 1] = ice.Offset(m, icef::spvol);
     ice.boundary_flux_sink = ice.boundary_flux[m]; // (booked by IceBudgetOpenFaces)
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
     ice.boundary_flux_sink = nullptr;
@@ -294,6 +309,10 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           const PetscReal rho   = rho_L + outs[0][idx];
           const char     *bad   = nullptr;
           if (!(rho > 0)) bad = "density";
+          if (transport_volume && !bad) {
+            const PetscReal v = (rho_L * c[ice.Offset(m, icef::spvol)] + outs[nq][idx]) / rho;
+            if (v > 0 && std::isfinite(v)) c[ice.Offset(m, icef::spvol)] = v;
+          }
           PetscReal u[3] = {0, 0, 0}, u2 = 0;
           for (PetscInt d = 0; d < dim; ++d) {
             u[d] = (rho_L * c[ice.Offset(m, icef::vel_L + d)] + outs[1 + d][idx]) / rho;

@@ -1,6 +1,7 @@
 // Equilibration pressure (ice.md 1.3, step 4): in every cell, the single pressure p at which the
 // materials' volumes fill the cell, sum_m rho_m / rho_micro_m(p, T_m) = 1, with rho_m = M_m/V the
-// bulk density. Newton on p (d theta_m/dp = -theta_m/(rho_micro dP/drho)), with a bisection on
+// bulk density; with -ice_equilibration normalized, in a cell that holds a solid, the bulk densities
+// are first rescaled so that the volumes fill the cell at the old pressure (below). Newton on p (d theta_m/dp = -theta_m/(rho_micro dP/drho)), with a bisection on
 // log p as the fallback; a cell where both fail stops the run with its state.
 //
 // Then the derived fields of each material: theta, specific volume 1/rho_micro, sound speed,
@@ -13,15 +14,15 @@
 namespace burst {
 
 namespace {
-// sum theta(p) - 1 and its derivative; rho_micro is written. A gas with a cold energy keeps its
+// sum theta(p) - 1 and its derivative for the bulk densities scale * rho_m; rho_micro is written. A gas with a cold energy keeps its
 // specific energy e[m] (so the equilibration conserves energy: gas_eos.hpp), the others their
 // temperature; cold[m] says which (e[m] unused otherwise).
-PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal p, const bool cold[], const PetscReal e[], PetscReal rho_micro[], PetscReal *dfdp)
+PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal scale, PetscReal p, const bool cold[], const PetscReal e[], PetscReal rho_micro[], PetscReal *dfdp)
 {
   PetscReal sum = 0, deriv = 0;
   for (PetscInt m = 0; m < ice.nmat; ++m) {
     const GasEOS   &eos = *ice.materials[m].eos;
-    const PetscReal rho = c[ice.Offset(m, icef::rho)];
+    const PetscReal rho = scale * c[ice.Offset(m, icef::rho)];
     PetscReal       dp_drho;
     if (cold[m]) {
       rho_micro[m] = eos.DensityAtEnergy(p, e[m], rho_micro[m] > 0 ? rho_micro[m] : 1 / c[ice.Offset(m, icef::spvol)]);
@@ -53,12 +54,30 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
     cold[m]  = !ice.materials[m].solid && ice.materials[m].eos->HasColdEnergy();
     any_cold = any_cold || cold[m];
   }
+  const bool normalize = ice.equilibration_form == IceEquilibrationForm::Normalized && ice.nmat > ice.ngas;
   PetscCall(PetscLogEventBegin(ice.ev_equilibrate, 0, 0, 0, 0));
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscInt ncells = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   for (PetscInt idx = 0; idx < ncells; ++idx) {
     PetscScalar *c = a + idx * S;
-    PetscReal    p = c[ice.CellOffset(icef::press)];
+    PetscReal    p = c[ice.CellOffset(icef::press)], scale = 1;
+    if (normalize) {
+      // Normalized (Uintah's MPMICE, mpmice-lessons.md section 0): in a cell that holds a solid,
+      // the volumes at the old pressure (the solids' from their EOS, the gases' from their
+      // transported specific volume) are rescaled to fill the cell, so what the projection, the
+      // advection or a burn puts in too much or too little does not become pressure through the
+      // stiffest material; the pressure moves with the materials' own states.
+      PetscReal solid_volume = 0, volume = 0;
+      for (PetscInt m = 0; m < n; ++m) {
+        const PetscReal rho = c[ice.Offset(m, icef::rho)];
+        if (ice.materials[m].solid) {
+          const PetscReal rho_s = ice.materials[m].eos->Density(p, c[ice.Offset(m, icef::temp)]);
+          solid_volume += rho_s > 0 ? rho / rho_s : 0;
+        } else volume += rho * c[ice.Offset(m, icef::spvol)];
+      }
+      volume += solid_volume;
+      if (solid_volume > ice.trace_fraction && volume > 0 && std::isfinite(volume)) scale = 1 / volume;
+    }
     if (any_cold)
       for (PetscInt m = 0; m < n; ++m) {
         rho_micro[m] = -1; // DensityAtEnergy's first guess: the stored specific volume
@@ -73,7 +92,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       bool            converged = false;
       for (PetscInt it = 0; it < ice.equilibration_max_iterations && p > 0 && std::isfinite(p); ++it) {
         PetscReal       dfdp;
-        const PetscReal f = VolumeResidual(ice, c, p, cold, e, rho_micro, &dfdp);
+        const PetscReal f = VolumeResidual(ice, c, scale, p, cold, e, rho_micro, &dfdp);
         if (!std::isfinite(f)) break;
         if (std::fabs(f) < tol) {
           converged = true;
@@ -85,11 +104,11 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       }
       if (!converged) { // bisection on log p: sum theta decreases with p
         PetscReal lo = 1e-6, hi = 1e15, f_lo, f_hi;
-        f_lo = VolumeResidual(ice, c, lo, cold, e, rho_micro, nullptr);
-        f_hi = VolumeResidual(ice, c, hi, cold, e, rho_micro, nullptr);
+        f_lo = VolumeResidual(ice, c, scale, lo, cold, e, rho_micro, nullptr);
+        f_hi = VolumeResidual(ice, c, scale, hi, cold, e, rho_micro, nullptr);
         if (f_lo > 0 && f_hi < 0) {
           for (PetscInt it = 0; it < 200; ++it) {
-            const PetscReal mid = std::sqrt(lo * hi), f = VolumeResidual(ice, c, mid, cold, e, rho_micro, nullptr);
+            const PetscReal mid = std::sqrt(lo * hi), f = VolumeResidual(ice, c, scale, mid, cold, e, rho_micro, nullptr);
             if (!std::isfinite(f)) break;
             if (f > 0) lo = mid;
             else hi = mid;
@@ -107,7 +126,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
           SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the equilibration pressure of cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") did not converge (Newton and bisection on [1e-6, 1e15] Pa); state:%s", ice.step, i, j, k, state.c_str());
         }
       }
-      VolumeResidual(ice, c, p, cold, e, rho_micro, nullptr);
+      VolumeResidual(ice, c, scale, p, cold, e, rho_micro, nullptr);
     }
     PetscReal sum_kappa = 0;
     for (PetscInt m = 0; m < n; ++m) {
@@ -116,7 +135,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
       const PetscReal   T   = c[ice.Offset(m, icef::temp)];
       const GasEOSPoint s   = eos.Evaluate(rho_micro[m], T);
       const PetscReal   c2  = s.dp_drho + T * s.dp_dT * s.dp_dT / (rho_micro[m] * rho_micro[m] * eos.cv);
-      const PetscReal   theta = c[ice.Offset(m, icef::rho)] / rho_micro[m];
+      const PetscReal   theta = scale * c[ice.Offset(m, icef::rho)] / rho_micro[m];
       c[ice.Offset(m, icef::theta)]  = theta;
       c[ice.Offset(m, icef::spvol)]  = 1 / rho_micro[m];
       c[ice.Offset(m, icef::kappa)]  = 1 / (rho_micro[m] * c2);

@@ -28,7 +28,9 @@ namespace burst {
 enum class IceBC : int { Wall = 0, Symmetry = 1, Outflow = 2, Inflow = 3 };
 enum class IcePressureSolver : int { Explicit = 0, SemiImplicit = 1 };
 enum class RiemannShape : int { Planar = 0, Cylinder = 1, Sphere = 2 };
+enum class IceEquilibrationForm : int { Mass = 0, Normalized = 1 };
 extern const char *const IceBCNames[];
+extern const char *const IceEquilibrationFormNames[];
 extern const char *const IcePressureSolverNames[];
 extern const char *const RiemannShapeNames[];
 
@@ -93,8 +95,9 @@ struct IceBoundaryBudget {
   PetscReal impulse[3] = {0, 0, 0};                         // N s
 };
 // Values per material that the advection's face loop adds for the domain faces: the flux of the
-// density and of the nq advected quantities (at most 1 + dim + 2), per unit cell volume.
-inline constexpr int kIceBoundaryFluxes = 6;
+// density and of the nq advected quantities (at most dim + 3: velocity, energy, the dual-energy
+// temperature, the transported specific volume), per unit cell volume.
+inline constexpr int kIceBoundaryFluxes = 7;
 
 struct IceSolver {
   MPI_Comm comm = PETSC_COMM_WORLD;
@@ -110,6 +113,10 @@ struct IceSolver {
 
   // Options
   IcePressureSolver pressure_solver = IcePressureSolver::Explicit;
+  // In cells that hold a solid: the materials' volumes from their masses (Mass), or rescaled to fill
+  // the cell at the old pressure, the gases' from their transported specific volume (Normalized,
+  // equilibration.cxx)
+  IceEquilibrationForm equilibration_form = IceEquilibrationForm::Mass;
   PetscInt  advection_order = 2;
   PetscBool compatible_fluxes = PETSC_TRUE;
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)

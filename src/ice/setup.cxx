@@ -12,6 +12,7 @@ namespace burst {
 
 const char *const IceBCNames[]             = {"wall", "symmetry", "outflow", "inflow"};
 const char *const IcePressureSolverNames[] = {"explicit", "semi_implicit"};
+const char *const IceEquilibrationFormNames[] = {"mass", "normalized"};
 const char *const RiemannShapeNames[]      = {"planar", "cylinder", "sphere"};
 
 // The Riemann (two-state) initial condition, ice.md 6.1-6.2.
@@ -78,6 +79,9 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i]));
   ice.nmat = n;
 
+  choice = (int)ice.equilibration_form;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_equilibration", "In cells that hold a solid: mass (every volume from its mass, sum rho_m/rho_micro_m(p) = 1) or normalized (the volumes at the old pressure, the gases' from their transported specific volume, rescaled to fill the cell, so an overfill does not become pressure)", IceEquilibrationFormNames, 2, &choice, nullptr));
+  ice.equilibration_form = (IceEquilibrationForm)choice;
   choice = (int)ice.pressure_solver;
   PetscCall(OptionsChoice(PetscOptionsObject, "-ice_pressure_solver", "Pressure update: explicit (ice.md 1.5) or semi_implicit (KSP on the cell DMDA, options under -ice_pressure_)", IcePressureSolverNames, 2, &choice, nullptr));
   ice.pressure_solver = (IcePressureSolver)choice;
