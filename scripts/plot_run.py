@@ -9,8 +9,10 @@ Writes into OUTPUT_DIR
                  3-D output is drawn as an x-y projection of all particles seen from +z (particles
                  with larger z are drawn on top).
   energy.png     kinetic, internal and total minus external work against time from monitor.csv,
-                 with the relative energy balance error in a small panel below (a gas-only run:
-                 the gas's kinetic, internal and total energy and its mass change).
+                 with the relative energy balance error in a small panel below. A run with gas
+                 draws the terms of its energy budget (particles, gases, what left through open
+                 faces, removed particles, the chemical energy released) and their sum, with the
+                 energy and mass budget errors below.
   gas.png        a run with gas: pressure and mixture density of the last gas_NNNNNN.h5 (2-D: maps,
                  3-D: the mid-z slice, a tube one cell wide: profiles along x).
   burst.png      particles and gas together (2-D or the mid-z slice): the particles of the last
@@ -260,10 +262,65 @@ def read_monitor(outdir):
     return table, None
 
 
+def has_budget(table):
+    return table is not None and "budget_energy" in table.dtype.names
+
+
+def plot_budget(outdir, summary, table):
+    """A run with gas: the terms of the energy budget (monitor.cxx ComputeBudget) and their sum, which a
+    conservative run keeps at its initial value; below, the energy and mass budget errors."""
+    t = table["time"]
+    names = table.dtype.names
+    zero = np.zeros_like(t)
+    col = lambda name: table[name] if name in names else zero
+    fig, (ax, axe) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), dpi=DPI,
+                                  gridspec_kw={"height_ratios": [3, 1], "hspace": 0.08})
+    style = {"marker": "." if t.size < 60 else None, "lw": 1.5}
+    particles = summary.get("particles", 0) > 0 or np.any(col("kinetic") != 0)
+    if particles:
+        ax.plot(t, col("kinetic"), label="particles: kinetic", color="tab:blue", **style)
+        ax.plot(t, col("internal") + col("heat_to_particles") - col("reactant_thermal_energy"),
+                label="particles: stress work + heat from gas − reactant's heat to gas", color="tab:orange", **style)
+    ax.plot(t, col("gas_kinetic_energy"), label="gas: kinetic", color="tab:cyan", **style)
+    ax.plot(t, col("gas_internal_energy"), label="gas: internal", color="tab:red", **style)
+    if np.any(col("open_face_energy") != 0) or np.any(col("open_face_work") != 0):
+        ax.plot(t, col("open_face_energy") + col("open_face_work"), label="out through open faces (energy + p u A dt)", color="tab:green", **style)
+    if np.any(col("removed_particle_energy") != 0):
+        ax.plot(t, col("removed_particle_energy"), label="removed particles", color="tab:brown", **style)
+    if np.any(col("chemical_energy") != 0):
+        ax.plot(t, col("chemical_energy"), label="chemical energy released", color="tab:purple", ls="--", lw=1.5)
+    if np.any(col("external_work") != 0):
+        ax.plot(t, col("external_work"), label="external work", color="tab:gray", ls="--", lw=1.5)
+    ax.plot(t, table["budget_energy"], label="sum − chemical − external work", color="black", **style)
+    ax.set_ylabel("energy [J] (per metre in 2-D)" if summary.get("dim") == 2 else "energy [J]")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    scene = summary.get("scene") or os.path.basename(os.path.normpath(outdir))
+    ax.set_title("%s: energy budget" % scene, fontsize=11)
+    # scaled by hand, as plot_energy: matplotlib's offset text would sit on the panel above
+    errors = np.concatenate([np.abs(table["balance_error"]), np.abs(col("mass_budget_error"))])
+    errors = errors[np.isfinite(errors)]
+    exponent = int(np.floor(np.log10(errors.max()))) if errors.size and errors.max() > 0 else 0
+    exponent = exponent if exponent < -1 or exponent > 2 else 0
+    axe.plot(t, table["balance_error"] / 10.0 ** exponent, color="tab:red", label="energy", **style)
+    axe.plot(t, col("mass_budget_error") / 10.0 ** exponent, color="tab:green", label="mass", **style)
+    axe.axhline(0.0, color="gray", lw=0.8)
+    axe.set_ylabel("budget error\n/ largest term" + ("\n[×1e%d]" % exponent if exponent else ""), fontsize=9)
+    axe.set_xlabel("time [s]")
+    axe.legend(fontsize=8)
+    axe.grid(True, alpha=0.3)
+    out = os.path.join(outdir, "energy.png")
+    fig.savefig(out, dpi=DPI, bbox_inches="tight")
+    plt.close(fig)
+    return out
+
+
 def plot_energy(outdir, summary):
     table, problem = read_monitor(outdir)
     if table is None:
         return None, problem
+    if has_budget(table):
+        return plot_budget(outdir, summary, table), None
     t = table["time"]
     fig, (ax, axe) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), dpi=DPI,
                                   gridspec_kw={"height_ratios": [3, 1], "hspace": 0.08})
@@ -353,6 +410,8 @@ def plot_gas_energy(outdir, summary):
     """A gas-only run: gas kinetic, internal and total energy, and the relative mass change."""
     path = os.path.join(outdir, "monitor.csv")
     table = np.atleast_1d(np.genfromtxt(path, delimiter=",", names=True))
+    if has_budget(table):
+        return plot_budget(outdir, summary, table)
     t = table["time"]
     fig, (ax, axe) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 6.0), dpi=DPI, gridspec_kw={"height_ratios": [3, 1], "hspace": 0.08})
     ax.plot(t, table["gas_kinetic_energy"], label="kinetic", color="tab:blue")

@@ -125,10 +125,16 @@ struct Diagnostics {
   PetscReal removed_energy      = 0; // J, kinetic + internal energy of removed particles (this rank)
   PetscReal viscous_work        = 0; // J, work of the artificial bulk viscosity (this rank)
   PetscReal removed_mass        = 0; // kg (this rank)
+  PetscReal removed_momentum[3] = {0, 0, 0}; // kg m/s of the removed particles and of what burning took from particles (this rank)
+  PetscReal bc_impulse[3]       = {0, 0, 0}; // N s the fixed and symmetry faces gave the particles through the nodes (this rank; grid update, gas coupling)
   PetscInt  removed_particles   = 0; // this rank
   PetscReal initial_energy      = 0; // J, global
   PetscReal initial_kinetic     = 0; // J, global, at the start of the run
   PetscBool kinetic_stop        = PETSC_FALSE; // the run ended on -stop_kinetic_fraction
+  // The budgets of a run with gas (monitor.cxx): the conserved sums at the start (mass, momentum (3),
+  // energy) and the largest term seen (mass, momentum, energy), global.
+  PetscReal budget_initial[5] = {0, 0, 0, 0, 0};
+  PetscReal budget_scale[3]   = {0, 0, 0};
   PetscReal max_error_displacement = 0; // analytic solutions: max over monitor steps of the L2 error
   PetscReal last_error_displacement = 0;
 };

@@ -11,7 +11,9 @@
 // ICE (a scene with gases), rows 4 and 7-17 of ice.md 1.2:
 //   equilibration pressure -> face velocities + face exchange -> pressure (explicit or KSP) ->
 //   face pressure, momentum and energy sources, Lagrangian values -> cell exchange, Lagrangian
-//   specific volume -> advection, conserved to primitive
+//   specific volume -> advection, conserved to primitive; the budgets mark the gases' energy at the
+//   start, book the domain faces after the sources (face work, face-pressure impulse), the exchange's
+//   change after it, and the open faces after the advection (their fluxes)
 //
 // Solids and gas together (ice.md 1.2, the full table; USL or MUSL for the particles):
 //   P2G(m, mv) -> solids to cells -> equilibration -> burning (gas sources, particle masses) ->
@@ -67,12 +69,16 @@ static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
 {
   PetscFunctionBeginUser;
   ice.dt = dt;
+  PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
   PetscCall(IceSources(ice));
+  PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
+  PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(IceAdvect(ice));
+  PetscCall(IceBudgetOpenFaces(ice));
   ice.time += dt;
   ice.step += 1;
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -87,6 +93,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(ComputeExternalForces(sim));
   PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
   PetscCall(CouplingProjectSolids(sim));
+  PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
   PetscCall(CouplingBurn(sim));
   PetscCall(CouplingBurnParticles(sim));
@@ -97,7 +104,9 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(GridUpdate(sim));
   PetscCall(CouplingSolidVelocity(sim));
   PetscCall(IceSources(ice));
+  PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
+  PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
   if (sim.scheme == StepScheme::MUSL) {
     PetscCall(RemapMomentum(sim));
@@ -110,6 +119,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(ConductHeat(sim));
   PetscCall(NonlocalAverage(sim));
   PetscCall(IceAdvect(ice));
+  PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
   ice.step += 1;
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -102,6 +102,8 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscReal *CouplingCounters(Simulation &sim) { return sim.coupling->counters; }
+
 PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles)
 {
   PetscFunctionBeginUser;
@@ -223,6 +225,8 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           }
           c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
           c.burnt_mass += out.dm;
+          c.counters[kChemicalEnergy] += out.dm * out.Q; // the products' energy beyond the reactant's c_v,s T_s
+          c.counters[kReactantThermalCells] += out.dm * cv * Ts;
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
@@ -303,12 +307,20 @@ struct BurnParticles {
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { f += N * phi[index(i, j, k) * c.nsolid + s]; });
       const PetscReal J = Mat3CMap(F + 9 * p).determinant(); // a crushed reactant burns out, burning this step or not
       if (f <= 0 && J >= c.burnout_volume_ratio) continue;
-      const PetscReal keep = PetscMax(1 - f, 0.0);
+      const PetscReal keep = PetscMax(1 - f, 0.0), cv = ice.materials[c.first + s].eos->cv;
       PetscReal       v2   = 0;
       for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
       // what leaves the particles goes to the gas: it leaves the solids' energy balance
-      sim.diag.removed_mass += (1 - keep) * mass[p];
+      const PetscReal burnt = (1 - keep) * mass[p];
+      sim.diag.removed_mass += burnt;
       sim.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
+      c.counters[kBurntParticleMass] += burnt;
+      c.counters[kBurntParticleEnergy] += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
+      c.counters[kBurntParticleThermal] += burnt * cv * T[p];
+      for (int a = 0; a < DIM; ++a) {
+        sim.diag.removed_momentum[a] += burnt * v[DIM * p + a];
+        c.counters[kBurntParticleMomentum + a] += burnt * v[DIM * p + a];
+      }
       mass[p] *= keep;
       vol[p] *= keep;
       vol0[p] *= keep;
@@ -319,10 +331,16 @@ struct BurnParticles {
         PetscInt ijk[3] = {0, 0, 0};
         for (int d = 0; d < DIM; ++d) ijk[d] = PetscMin(PetscMax((PetscInt)std::floor((x[DIM * p + d] - ice.lower[d]) / ice.h[d]), ice.xs[d]), ice.xs[d] + ice.xm[d] - 1);
         const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), m = c.first + s;
-        const PetscReal dr = mass[p] / V, cv = ice.materials[m].eos->cv;
+        const PetscReal dr = mass[p] / V;
         AddConversion(ice, idx, m, -dr, v + DIM * p, cv * T[p]);
         AddConversion(ice, idx, c.product[s], dr, v + DIM * p, cv * T[p] + c.burn[s]->HeatOfReaction());
-        c.burnt_mass += mass[p]; // RemoveParticles books its mass and energy as removed
+        c.burnt_mass += mass[p]; // RemoveParticles books its mass, momentum and energy as removed
+        c.counters[kBurntParticleMass] += mass[p];
+        c.counters[kBurntParticleEnergy] += 0.5 * mass[p] * v2 + energy[p];
+        c.counters[kBurntParticleThermal] += mass[p] * cv * T[p];
+        for (int a = 0; a < DIM; ++a) c.counters[kBurntParticleMomentum + a] += mass[p] * v[DIM * p + a];
+        c.counters[kChemicalEnergy] += mass[p] * c.burn[s]->HeatOfReaction();
+        c.counters[kReactantThermalCells] += mass[p] * cv * T[p]; // (a remnant's product takes the particle's own)
       }
     }
     PetscCall(fields.RestoreAll());

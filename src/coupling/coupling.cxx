@@ -114,10 +114,11 @@ struct ProjectKernel {
   }
 };
 
-// Nodal values -> particles: ambient pressure (p_n - p_ref) and the temperature increment.
+// Nodal values -> particles: ambient pressure (p_n - p_ref) and the temperature increment (whose
+// heat m c_v,s dT the budget counts).
 struct ParticleKernel {
   Simulation        &sim;
-  const Coupling    &c;
+  Coupling          &c;
   const PetscScalar *inc;
   bool               pressure; // else temperature
   template <int DIM, ShapeType S>
@@ -127,9 +128,9 @@ struct ParticleKernel {
     const LocalNodeIndex index(g);
     const PetscInt       dof = c.IncDof(DIM);
     PetscInt             n;
-    const PetscReal     *x, *hw, *F;
+    const PetscReal     *x, *hw, *F, *m = nullptr;
     const PetscInt      *mat = nullptr;
-    PetscReal           *out;
+    PetscReal           *out, heat = 0;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
@@ -137,17 +138,24 @@ struct ParticleKernel {
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(pressure ? field::ambient_pressure : field::temperature, &out));
-    if (!pressure && c.nfield > 1) PetscCall(fields.Get(field::material, &mat));
+    if (!pressure) {
+      PetscCall(fields.Get(field::material, &mat));
+      PetscCall(fields.Get(field::mass, &m));
+    }
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       // the pressure, or the temperature increment of the particle's own velocity field
-      const PetscInt q     = pressure ? 0 : 1 + (mat ? c.field_of[c.solid_of[mat[p]]] : 0) * (DIM + 1) + DIM;
+      const PetscInt q     = pressure ? 0 : 1 + c.field_of[c.solid_of[mat[p]]] * (DIM + 1) + DIM;
       PetscReal      value = 0;
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { value += N * inc[index(i, j, k) * dof + q]; });
       if (pressure) out[p] = value - c.p_ref;
-      else out[p] += value;
+      else {
+        out[p] += value;
+        heat += m[p] * sim.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
+      }
     }
+    c.counters[kHeatToParticles] += heat;
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -289,12 +297,30 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   // per owned node and velocity field: the solid-mass weighted mean of the increments of the cells
   // around it, over the solids that move in that field
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  const PetscScalar *nodal; // the nodal masses of the P2G, for the impulse of the face conditions
+  const PetscInt     node_dof = g.num_velocity_fields * g.NodeStride();
   PetscCall(VecGetArrayRead(ice.local, &a));
   PetscCall(VecGetArray(c.inc_global, &inc));
   PetscCall(VecGetArray(g.velocity, &vel));
+  PetscCall(VecGetArrayRead(g.nodal, &nodal));
   PetscCheck((PetscInt)g.velocity_written.size() == xm[0] * xm[1] * xm[2], PETSC_COMM_SELF, PETSC_ERR_PLIB, "The coupling's increments come after a grid update on the node DMDA's layout");
   const PetscReal V = ice.CellVolume();
-  PetscInt        l = 0;
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k) // the heat the cells gave their solids (the budgets' view of the gas side)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *cl = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscInt m = c.first + s;
+          const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
+          c.counters[kHeatToSolidCells] += M * ice.materials[m].eos->cv * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscReal u = cl[ice.Offset(m, icef::vel + d)], uL = cl[ice.Offset(m, icef::vel_L + d)];
+            c.counters[kMomentumToSolidCells + d] += M * (uL - u);
+            c.counters[kKineticToSolidCells] += 0.5 * M * (uL * uL - u * u);
+          }
+        }
+      }
+  PetscInt l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
@@ -314,7 +340,8 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
         for (PetscInt f = 0; f < c.nfield; ++f) {
           PetscScalar *ni = inc + l * dof + 1 + f * (dim + 1);
           for (PetscInt d = 0; d < dim; ++d) {
-            PetscReal value = weight[f] > 0 ? dv[f][d] / weight[f] : 0;
+            PetscReal       value = weight[f] > 0 ? dv[f][d] / weight[f] : 0;
+            const PetscReal given = value;
             // the boundary conditions of the grid hold: no normal change on a symmetry face, none on a fixed one
             for (int side = 0; side < 2; ++side) {
               const bool on_face = side == 0 ? node[d] == 0 : node[d] == g.cells[d];
@@ -323,13 +350,19 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
             for (PetscInt e = 0; e < dim; ++e)
               for (int side = 0; side < 2; ++side)
                 if ((side == 0 ? node[e] == 0 : node[e] == g.cells[e]) && g.bc[e][side] == FaceBC::Fixed) value = 0;
+            // what the face held back is the face's impulse on the particles (their momentum changes by m_I dv_I)
+            const PetscReal m_node = nodal[l * node_dof + f * g.NodeStride()];
+            c.counters[kMomentumToNodes + d] += m_node * given;
+            if (value != given) sim.diag.bc_impulse[d] += m_node * (value - given);
             ni[d] = value;
+            c.counters[kKineticToNodes] += m_node * (vel[l * vdof + f * 2 * dim + dim + d] + 0.5 * value) * value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
             if (value != 0) g.velocity_written[l] = 1;       // (the next grid update must zero it if the node is empty)
           }
           ni[dim] = weight[f] > 0 ? dT[f] / weight[f] : 0;
         }
       }
+  PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArray(c.inc_global, &inc));
   PetscCall(VecRestoreArrayRead(ice.local, &a));

@@ -40,4 +40,33 @@ PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt6
 PetscErrorCode CouplingBurn(Simulation &sim);
 PetscErrorCode CouplingBurnParticles(Simulation &sim);
 
+// The coupling's budget counters (monitor.cxx, checkpoint.cxx), this rank's, cumulative since the
+// start: what burning took from the particles (mass; kinetic energy and stress work; thermal energy
+// m c_v,s T_p; momentum), the chemical energy the burn model released (dm Q: what the product's energy
+// source dm (c_v,s T_s + Q) holds beyond the reactant's own c_v,s T_s), and the heat the gas gave the
+// particles (the cell exchange's and the drag's heat as the particles received it, m c_v,s dT_p).
+// The same transfers as the cells saw them, which the budgets report beside the particles' view:
+// the heat the exchange gave the solids' cell materials (M_s c_v,s (T_L - T)), the reactant's
+// thermal energy the products received (dm c_v,s T_s at the cell's solid temperature), and the
+// momentum the cells' sources and exchange gave the solids (M_s (u_L - u)) against what the nodes
+// received of it (m_I dv_I, before the face conditions hold it back), and the kinetic energy the same
+// increments give the solids in the cells (M_s (|u_L|^2 - |u|^2)/2) and at the nodes (m_I (|v + dv|^2
+// - |v|^2)/2 with the increments the nodes keep).
+enum CouplingCounter : int {
+  kBurntParticleMass,
+  kBurntParticleEnergy,
+  kBurntParticleThermal,
+  kBurntParticleMomentum, // 3 values
+  kChemicalEnergy = kBurntParticleMomentum + 3,
+  kHeatToParticles,
+  kHeatToSolidCells,
+  kReactantThermalCells,
+  kMomentumToSolidCells, // 3 values
+  kMomentumToNodes = kMomentumToSolidCells + 3, // 3 values
+  kKineticToSolidCells = kMomentumToNodes + 3,
+  kKineticToNodes,
+  kNumCouplingCounters
+};
+PetscReal *CouplingCounters(Simulation &sim); // kNumCouplingCounters values
+
 } // namespace burst

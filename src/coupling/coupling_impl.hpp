@@ -30,6 +30,7 @@ struct Coupling {
   PetscReal                               burnout_volume_ratio = 0.5; // a burning particle crushed below this det F burns out
   PetscReal                               burnt_mass = 0; // kg converted to gas so far (this rank)
   PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
+  PetscReal                               counters[kNumCouplingCounters] = {}; // the budget counters (coupling.hpp)
   std::vector<char>                       burnt_out;           // per local particle, reused every step
   DM                                      da_phi = nullptr;    // nodes: burnt fraction per solid
   Vec                                     phi_global = nullptr, phi_local = nullptr;

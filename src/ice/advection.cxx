@@ -176,6 +176,8 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
             if (R_owned) acc[(size_t)q * nlocal + R] += F;
             if (L_owned) acc[(size_t)q * nlocal + L] -= F;
           }
+          if (ice.boundary_flux_sink && (ijk[d] == 0 || ijk[d] == ice.cells[d])) // a domain face: the same fluxes, out positive, for the budgets (diagnostics.cxx)
+            for (PetscInt q = 0; q <= nq; ++q) ice.boundary_flux_sink[q] += (ijk[d] == 0 ? -sign : sign) * volume * values[q];
         }
   }
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -289,7 +291,9 @@ PetscErrorCode IceAdvect(IceSolver &ice)
     q_fields[dim] = ice.Offset(m, total ? icef::energy_L : icef::temp_L);
     if (total) q_fields[dim + 1] = ice.Offset(m, icef::temp_L);
     if (transport_volume) q_fields[nq - 1] = ice.Offset(m, icef::spvol);
+    ice.boundary_flux_sink = ice.boundary_flux[m]; // (booked by IceBudgetOpenFaces)
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
+    ice.boundary_flux_sink = nullptr;
     const PetscReal cv = ice.materials[m].eos->cv;
     // A cold energy (gas_eos.hpp): the temperature is e - e_cold at a specific volume that the next
     // equilibration keeps e with (it solves at fixed e): one material fills the cell, so its density;

@@ -1,5 +1,6 @@
-// Gas totals for the monitor (mass, momentum, internal and kinetic energy) and the profile of a
-// run along x (profile.csv), written atomically by rank 0.
+// Gas totals for the monitor (mass, momentum, internal and kinetic energy), the budget of the domain
+// faces (what the gas takes out through open faces, the face pressure's impulse) and the profile of
+// a run along x (profile.csv), written atomically by rank 0.
 #include "ice.hpp"
 #include <algorithm>
 #include <cstdio>
@@ -27,7 +28,8 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
             local[1 + d] += M * u;
             u2 += u * u;
           }
-          local[4] += M * ice.materials[m].eos->cv * c[ice.Offset(m, icef::temp)];
+          // e(rho_micro, T) = c_v T + e_cold(rho_micro), at the material density of the last equilibration
+          local[4] += M * ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]);
           local[5] += 0.5 * M * u2;
         }
       }
@@ -38,6 +40,229 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
   for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
   t.internal_energy = global[4];
   t.kinetic_energy  = global[5];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The Lagrangian total energy of every material in the owned cells, rho_L V (c_v T_L + e_cold,L +
+// |u_L|^2/2) (the cells' view of the solids too), between the sources and the advection.
+static PetscReal LagrangianEnergy(const IceSolver &ice, const PetscScalar *a)
+{
+  PetscReal sum = 0;
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt m = 0; m < ice.nmat; ++m) {
+          const GasEOS &eos = *ice.materials[m].eos;
+          PetscReal     uL2 = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+          const bool cold = !ice.materials[m].solid && eos.HasColdEnergy(); // IceSources leaves e_cold,L / c_v in energy_L
+          sum += ice.CellVolume() * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (c[ice.Offset(m, icef::temp_L)] + (cold ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2);
+        }
+      }
+  return sum;
+}
+
+PetscErrorCode IceBudgetAfterExchange(IceSolver &ice)
+{
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  ice.exchange_energy_change += LagrangianEnergy(ice, a) - ice.exchange_energy_mark;
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceBudgetStepStart(IceSolver &ice)
+{
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  ice.gas_energy_mark = 0;
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          PetscReal u2 = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
+          ice.gas_energy_mark += ice.CellVolume() * c[ice.Offset(m, icef::rho)] * (ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]) + 0.5 * u2);
+        }
+      }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceBudgetFaces(IceSolver &ice)
+{
+  const PetscScalar *a;
+  const PetscInt     S = ice.stride, n = ice.nmat;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  // the face pressure of IceSources (sources.cxx), the same expression on the same cells, and the
+  // shock viscosity that the gases (not the solids) feel there
+  auto face_pressure = [&](PetscInt L, PetscInt R) {
+    const PetscScalar *cL = a + L * S, *cR = a + R * S;
+    PetscReal          rL = 0, rR = 0;
+    for (PetscInt m = 0; m < n; ++m) {
+      rL += cL[ice.Offset(m, icef::rho)];
+      rR += cR[ice.Offset(m, icef::rho)];
+    }
+    return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
+  };
+  const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
+  auto       face_q  = [&](PetscInt d, PetscInt R) { return viscous ? IceFaceViscosity(ice, a, d, R) : 0.0; };
+  const PetscReal V = ice.CellVolume();
+  // One pass over the owned cells for the budgets' report (not their sums): the solids' kinetic energy
+  // from IceSources' -dt theta_s grad p; the gases' face work that only one side of an interior face
+  // books (IceSources leaves it out where the gas is a trace, as in a cell a solid fills: the
+  // conservative form's face work cancels between two cells only where both book it); and what
+  // IceSources gave each gas beyond its conservative terms, its total energy change M_L (c_v T_L +
+  // e_cold,L + |u_L|^2/2) - M (c_v T + e_cold + |u|^2/2) less the converted mass's energy and kinetic
+  // energy and less the face work it books: in a cell that books it, a -p dV fallback; elsewhere a
+  // trace's pressure acceleration without work. (A total-energy temperature that stays negative for
+  // the exchange is the exchange's fallback, exchange.cxx.)
+  auto      booked = [&](const PetscScalar *c, PetscInt m) { return ice.conservative_energy && c[ice.Offset(m, icef::theta)] >= ice.trace_fraction; };
+  PetscReal energy = 0; // the gases' total energy as IceSources found it, against the step's start
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscInt     idx = ice.LocalIndex(i, j, k);
+        const PetscScalar *c   = a + idx * S;
+        const PetscInt     ijk[3] = {i, j, k};
+        PetscReal          p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, q_face[3][2] = {{0, 0}, {0, 0}, {0, 0}};
+        for (PetscInt d = 0; d < ice.dim; ++d) {
+          p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
+          p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
+          q_face[d][0] = face_q(d, idx);
+          q_face[d][1] = face_q(d, idx + ice.lstride[d]);
+        }
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          const bool here = booked(c, m);
+          PetscReal  work = 0; // per volume, as IceSources
+          for (PetscInt d = 0; d < ice.dim; ++d)
+            for (int side = 0; side < 2; ++side) {
+              const PetscInt  R = side ? idx + ice.lstride[d] : idx, L = R - ice.lstride[d];
+              const PetscReal u = ice.face_vel[d][R * n + m], theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
+              const PetscReal dw = ice.dt / ice.h[d] * (p_face[d][side] + q_face[d][side]) * theta_f * u;
+              if (here) work -= (side ? 1 : -1) * dw;
+              if (!side && ijk[d] > 0 && booked(a + L * S, m) != here) ice.gas_interface_work += (here ? 1 : -1) * V * dw; // the lower face: every interior face once
+            }
+          const GasEOS   &eos = *ice.materials[m].eos;
+          const bool      cold = eos.HasColdEnergy(); // IceSources leaves e_cold,L / c_v in energy_L
+          PetscReal       u2 = 0, uL2 = 0, converted = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
+            uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+          }
+          if (ice.has_mass_source) { // as IceSources: the energy source and the kinetic energy of the mass gained
+            const PetscReal  dr  = ice.mass_source[idx * n + m];
+            const PetscReal *dmv = &ice.momentum_source[(idx * n + m) * 3];
+            converted            = ice.energy_source[idx * n + m];
+            for (PetscInt d = 0; d < 3 && dr > 0; ++d) converted += 0.5 * dmv[d] * dmv[d] / dr;
+          }
+          const PetscReal e   = eos.cv * c[ice.Offset(m, icef::temp)] + (cold ? eos.ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]) : 0);
+          const PetscReal e_L = eos.cv * (c[ice.Offset(m, icef::temp_L)] + (cold ? c[ice.Offset(m, icef::energy_L)] : 0));
+          energy += V * c[ice.Offset(m, icef::rho)] * (e + 0.5 * u2);
+          const PetscReal made = V * (c[ice.Offset(m, icef::rho_L)] * (e_L + 0.5 * uL2) - c[ice.Offset(m, icef::rho)] * (e + 0.5 * u2) - converted - work);
+          if (here) ice.fallback_energy_change += made;
+          else ice.trace_energy_change += made;
+        }
+        for (PetscInt m = ice.ngas; m < n; ++m) {
+          const PetscReal rho = c[ice.Offset(m, icef::rho)], theta = c[ice.Offset(m, icef::theta)];
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            const PetscReal source = -ice.dt * theta * (p_face[d][1] - p_face[d][0]) / ice.h[d]; // momentum per volume
+            ice.solid_pressure_work += V * source * (c[ice.Offset(m, icef::vel + d)] + 0.5 * source / rho);
+          }
+        }
+      }
+  // the equilibration (and the pressure) keep each gas's mass, velocity and, at its new specific
+  // volume, its e: what they changed
+  ice.equilibration_energy_change += energy - ice.gas_energy_mark;
+  // the domain faces
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      if (!(s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d])) continue; // not this rank's face
+      const PetscReal A = V / ice.h[d], outward = s ? 1 : -1;
+      PetscInt        lo[3], hi[3];
+      for (PetscInt e = 0; e < 3; ++e) {
+        lo[e] = ice.xs[e];
+        hi[e] = ice.xs[e] + ice.xm[e];
+      }
+      lo[d] = s ? ice.cells[d] - 1 : 0;
+      hi[d] = lo[d] + 1;
+      for (PetscInt k = lo[2]; k < hi[2]; ++k)
+        for (PetscInt j = lo[1]; j < hi[1]; ++j)
+          for (PetscInt i = lo[0]; i < hi[0]; ++i) {
+            const PetscInt  idx = ice.LocalIndex(i, j, k), ghost = s ? idx + ice.lstride[d] : idx - ice.lstride[d];
+            const PetscInt  L = s ? idx : ghost, R = s ? ghost : idx; // the face's cells; its velocity is stored with R
+            const PetscReal p = face_pressure(L, R), q = face_q(d, R);
+            for (PetscInt m = 0; m < n; ++m) {
+              const PetscReal theta = a[idx * S + ice.Offset(m, icef::theta)], p_felt = m < ice.ngas ? p + q : p;
+              ice.boundary.impulse[d] -= outward * ice.dt * theta * p_felt * A; // -dt theta grad (p + q): the face's share
+              // the face work of the conservative energy form (gases that are not a trace only, as IceSources)
+              if (m >= ice.ngas || !ice.conservative_energy || theta < ice.trace_fraction) continue;
+              const PetscReal u       = ice.face_vel[d][R * n + m];
+              const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
+              ice.boundary.work += outward * ice.dt * A * p_felt * theta_f * u;
+            }
+          }
+    }
+  ice.exchange_energy_mark = LagrangianEnergy(ice, a); // (IceBudgetAfterExchange)
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
+{
+  const PetscScalar *a;
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
+  const PetscReal V = ice.CellVolume();
+  const bool      total = ice.advect_total_energy;
+  PetscReal       out = 0; // the energy this advection carried out
+  for (PetscInt m = 0; m < ice.ngas; ++m) {
+    PetscReal *f = ice.boundary_flux[m]; // density, momentum (dim), energy (or temperature) over c_v, ...
+    ice.boundary.mass += V * f[0];
+    for (PetscInt d = 0; d < ice.dim; ++d) ice.boundary.momentum[d] += V * f[1 + d];
+    // total energy: c_v T + e_cold + |u|^2/2 is what the advection carries (with
+    // -ice_advect_total_energy 0 the thermal energy c_v T only: that form does not conserve the total)
+    out += V * ice.materials[m].eos->cv * f[1 + ice.dim];
+    for (int q = 0; q < kIceBoundaryFluxes; ++q) f[q] = 0;
+  }
+  ice.boundary.energy += out;
+  // what the advection did not conserve: the total energy M (c_v T + e_cold + |u|^2/2) after it (as
+  // IceComputeTotals), plus what left, less the Lagrangian one it advected (the L fields are still
+  // there); the conservative remap changes it by round-off, its dual-energy fallbacks and trace resets
+  // by what they replace
+  PetscReal change = out;
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt m = 0; m < ice.ngas; ++m) {
+          const GasEOS   &eos = *ice.materials[m].eos;
+          PetscReal       u2 = 0, uL2 = 0;
+          for (PetscInt d = 0; d < ice.dim; ++d) {
+            u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
+            uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+          }
+          // energy_L: the advected (T_L + e_cold,L/c_v + |u_L|^2/(2 c_v)) with total energy, else e_cold,L/c_v (sources.cxx)
+          const PetscReal E_L = total ? eos.cv * c[ice.Offset(m, icef::energy_L)] : eos.cv * (c[ice.Offset(m, icef::temp_L)] + (eos.HasColdEnergy() ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2;
+          change -= V * c[ice.Offset(m, icef::rho_L)] * E_L;
+          change += V * c[ice.Offset(m, icef::rho)] * (eos.InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]) + 0.5 * u2);
+        }
+      }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  ice.advection_energy_change += change;
+  PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -52,21 +52,25 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
             c[ice.Offset(m, icef::vel_L + d)] = q[m];
           }
         }
-        if (ice.conservative_energy && ice.drag_heating)
-          for (PetscInt m = 0; m < N; ++m) {
-            // a trace of gas did not pay for its kinetic energy (sources.cxx): it gets none back
-            if (!ice.materials[m].solid && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) continue;
-            c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
-          }
+        const PetscReal V = ice.CellVolume(); // (the budgets' counters: J)
+        for (PetscInt m = 0; m < N; ++m) {
+          // a trace of gas did not pay for its kinetic energy (sources.cxx): it gets none back
+          const bool back = ice.conservative_energy && ice.drag_heating && (ice.materials[m].solid || c[ice.Offset(m, icef::theta)] >= ice.trace_fraction);
+          if (back) c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
+          else ice.drag_energy_change -= V * c[ice.Offset(m, icef::rho_L)] * heat[m]; // the kinetic energy the drag removes, dropped
+        }
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           PetscReal &T_L = c[ice.Offset(m, icef::temp_L)];
           if (T_L > 0) continue;
           // the drag did not give back what the pressure gradient gave (sources.cxx): the
           // temperature form instead, counted
-          PetscReal cold_L = 0;
+          const GasEOS   &eos         = *ice.materials[m].eos;
+          const PetscReal T_before    = T_L, cold_before = eos.HasColdEnergy() ? eos.cv * c[ice.Offset(m, icef::energy_L)] : 0;
+          PetscReal       cold_L      = 0;
           T_L = IceTemperatureForm(ice, c, ice.LocalIndex(i, j, k), m, &cold_L);
-          if (ice.materials[m].eos->HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_L / ice.materials[m].eos->cv;
+          if (eos.HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_L / eos.cv;
           ++ice.energy_fallbacks;
+          ice.exchange_fallback_energy += V * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (T_L - T_before) + (eos.HasColdEnergy() ? cold_L - cold_before : 0));
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)T_L);
         }
         for (PetscInt m = 0; m < N; ++m)

@@ -83,6 +83,22 @@ struct IceTotals {
   PetscReal max_pressure = 0; // Pa, over the cells
 };
 
+// What crossed the domain faces since the start, this rank's faces (the budgets of monitor.csv,
+// diagnostics.cxx). Open (outflow, inflow) faces: the gases' mass, momentum and advected total energy
+// out of the domain, the very face fluxes the advection gives the cells (net, out positive), and the
+// work p theta_f u A dt the gas at those faces does on the outside (the conservative energy form's
+// face work). Every face: the impulse of the face pressure on the cells' materials, gas and solid,
+// theta_m p_f A dt (the sources' momentum term at a domain face, towards the inside).
+struct IceBoundaryBudget {
+  PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0; // kg, kg m/s, J
+  PetscReal work = 0;                                       // J
+  PetscReal impulse[3] = {0, 0, 0};                         // N s
+};
+// Values per material that the advection's face loop adds for the domain faces: the flux of the
+// density and of the nq advected quantities (at most dim + 3: velocity, energy, the dual-energy
+// temperature, the transported specific volume), per unit cell volume.
+inline constexpr int kIceBoundaryFluxes = 7;
+
 struct IceSolver {
   MPI_Comm comm = PETSC_COMM_WORLD;
   PetscInt dim = 2;
@@ -152,8 +168,24 @@ struct IceSolver {
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
+  IceBoundaryBudget boundary; // cumulative (this rank), see IceBoundaryBudget
+  PetscReal exchange_energy_change = 0; // J, this rank: the total energy of every material the cell exchange changed (cells' view; IceBudgetAfterExchange)
+  PetscReal exchange_energy_mark = 0;   // J, this rank: that energy before the exchange (IceBudgetFaces)
+  PetscReal drag_energy_change = 0;     // J, this rank: of it, the kinetic energy the drag removes that no material gets as heat (exchange.cxx)
+  PetscReal exchange_fallback_energy = 0; // J, this rank: of it, what its temperature-form fallbacks changed (exchange.cxx)
+  PetscReal solid_pressure_work = 0; // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
+  PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
+  PetscReal advection_energy_change = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
+  PetscReal fallback_energy_change = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
+  PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
+  PetscReal equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
+  PetscReal gas_energy_mark = 0;             // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
+  // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
+  // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
+  PetscReal *boundary_flux_sink = nullptr;
+  PetscReal  boundary_flux[kIceMaxMaterials][kIceBoundaryFluxes] = {};
 
-  PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt;
+  PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt, ev_budget;
 
   PetscInt Offset(PetscInt m, PetscInt f) const { return m * icef::kMatFields + f; }
   PetscInt CellOffset(PetscInt f) const { return nmat * icef::kMatFields + f; }
@@ -226,7 +258,21 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
 // Shock viscosity (viscosity.cxx) of the face between local cells R - lstride[d] and R, Pa.
 PetscReal      IceFaceViscosity(const IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt R);
-PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t); // gases only
+// Gases only; internal energy rho_m V e(rho_micro = 1/spvol, T) with the cold energy of the EOS.
+PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t);
+// The budget of the domain faces (diagnostics.cxx, IceBoundaryBudget): after IceSources (before the
+// advection changes the densities the face pressures are weighted with), the face work at open faces
+// and the face-pressure impulse, and with several materials the work of the pressure source on the
+// solids (solid_pressure_work) and the face work booked on one side only (gas_interface_work), and
+// the energy IceSources did not conserve (fallback_energy_change, trace_energy_change); after
+// IceAdvect, the open faces' fluxes of that advection and the energy it did not conserve
+// (advection_energy_change).
+// IceBudgetStepStart, first in the step, marks the gases' total energy that the equilibration
+// (equilibration_energy_change) is measured against.
+PetscErrorCode IceBudgetStepStart(IceSolver &ice);
+PetscErrorCode IceBudgetFaces(IceSolver &ice);
+PetscErrorCode IceBudgetAfterExchange(IceSolver &ice); // the exchange's change (exchange_energy_change)
+PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 // Scales every gas's bulk density by (1 - solid_fraction) per owned cell (local index), so that
 // the gases fill what the solids leave at the start (ice.md 8).
 PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction);

@@ -378,6 +378,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   PetscCall(PetscLogEventRegister("ICE_Advect", id, &ice->ev_advect));
   PetscCall(PetscLogEventRegister("ICE_Ghosts", id, &ice->ev_bc));
   PetscCall(PetscLogEventRegister("ICE_TimeStep", id, &ice->ev_dt));
+  PetscCall(PetscLogEventRegister("ICE_Budget", id, &ice->ev_budget));
 
   // The initial state (ice.md 8: sub-cell sampling of each region, 4 points per direction).
   const IceSolver &cice = *ice;

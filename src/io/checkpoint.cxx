@@ -59,10 +59,28 @@ enum Scalar : int {
   kIceInitial, // mass, momentum (3), internal, kinetic
   kBurntParticles = kIceInitial + 6,
   kIcePeakPressure, kIcePeakPressureTime, kInitialKinetic,
-  kNumScalars
+  kBudgetInitial,                   // the budgets' initial sums: mass, momentum (3), energy
+  kBudgetScale = kBudgetInitial + 5, // their largest terms: mass, momentum, energy
+  kNumScalars = kBudgetScale + 3
 };
 // Per-rank values of /run/rank_values, in this order.
-enum RankValue : int { kExternalWork, kRemovedEnergy, kViscousWork, kRemovedMass, kRemovedParticles, kBurntMass, kEnergyFallbacks, kLocalParticles, kNumRankValues };
+enum RankValue : int {
+  kExternalWork, kRemovedEnergy, kViscousWork, kRemovedMass, kRemovedParticles, kBurntMass, kEnergyFallbacks, kLocalParticles,
+  kBoundaryBudget,                      // the gas's IceBoundaryBudget: mass, momentum (3), energy, work, impulse (3)
+  kRemovedMomentum = kBoundaryBudget + 9, // 3
+  kBcImpulse = kRemovedMomentum + 3,      // 3
+  kDragEnergyChange = kBcImpulse + 3,     // the gas's drag_energy_change and solid_pressure_work
+  kSolidPressureWork,
+  kGasInterfaceWork,
+  kAdvectionEnergyChange,
+  kFallbackEnergyChange,
+  kTraceEnergyChange,
+  kEquilibrationEnergyChange,
+  kExchangeEnergyChange,
+  kExchangeFallbackEnergy,
+  kCouplingCounters,                      // the coupling's budget counters
+  kNumRankValues = kCouplingCounters + kNumCouplingCounters
+};
 
 std::string CheckpointName(const Simulation &sim, PetscInt step)
 {
@@ -221,6 +239,26 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
   mine[kBurntMass]         = sim.coupling ? sim.coupling->burnt_mass : 0;
   mine[kEnergyFallbacks]   = sim.ice ? (PetscReal)sim.ice->energy_fallbacks : 0;
   mine[kLocalParticles]    = (PetscReal)n;
+  if (sim.ice) {
+    const IceBoundaryBudget &f = sim.ice->boundary;
+    const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
+    for (int k = 0; k < 9; ++k) mine[kBoundaryBudget + k] = values[k];
+    mine[kDragEnergyChange]  = sim.ice->drag_energy_change;
+    mine[kSolidPressureWork] = sim.ice->solid_pressure_work;
+    mine[kGasInterfaceWork]  = sim.ice->gas_interface_work;
+    mine[kAdvectionEnergyChange] = sim.ice->advection_energy_change;
+    mine[kFallbackEnergyChange]  = sim.ice->fallback_energy_change;
+    mine[kTraceEnergyChange]     = sim.ice->trace_energy_change;
+    mine[kEquilibrationEnergyChange] = sim.ice->equilibration_energy_change;
+    mine[kExchangeEnergyChange]      = sim.ice->exchange_energy_change;
+    mine[kExchangeFallbackEnergy]    = sim.ice->exchange_fallback_energy;
+  }
+  for (int d = 0; d < 3; ++d) {
+    mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
+    mine[kBcImpulse + d]       = sim.diag.bc_impulse[d];
+  }
+  if (sim.coupling)
+    for (int k = 0; k < kNumCouplingCounters; ++k) mine[kCouplingCounters + k] = sim.coupling->counters[k];
   all.assign(sim.rank ? 0 : (size_t)kNumRankValues * sim.size, 0);
   PetscCallMPI(MPI_Gather(mine, kNumRankValues, MPIU_REAL, all.data(), kNumRankValues, MPIU_REAL, 0, sim.comm));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -243,6 +281,8 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
   s[kWallStepping]          = sim.wall_stepping;
   FragmentsGetState(&s[kFragments]);
   s[kInitialKinetic] = sim.diag.initial_kinetic;
+  for (int k = 0; k < 5; ++k) s[kBudgetInitial + k] = sim.diag.budget_initial[k];
+  for (int k = 0; k < 3; ++k) s[kBudgetScale + k] = sim.diag.budget_scale[k];
   if (sim.ice) {
     const IceSolver &ice = *sim.ice;
     s[kIceTime]           = ice.time;
@@ -550,6 +590,8 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   MonitorSetEnergyScale(s[kEnergyScale]);
   FragmentsSetState(&s[kFragments]);
   sim.diag.initial_kinetic = s[kInitialKinetic];
+  for (int k = 0; k < 5; ++k) sim.diag.budget_initial[k] = s[kBudgetInitial + k];
+  for (int k = 0; k < 3; ++k) sim.diag.budget_scale[k] = s[kBudgetScale + k];
   if (sim.ice) {
     IceSolver &ice           = *sim.ice;
     ice.time                 = s[kIceTime];
@@ -579,6 +621,29 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   sim.diag.removed_particles = (PetscInt)mine[kRemovedParticles];
   if (sim.coupling) sim.coupling->burnt_mass = mine[kBurntMass];
   if (sim.ice) sim.ice->energy_fallbacks = (PetscInt64)mine[kEnergyFallbacks];
+  if (sim.ice) {
+    IceBoundaryBudget &f = sim.ice->boundary;
+    f.mass               = mine[kBoundaryBudget];
+    for (int d = 0; d < 3; ++d) f.momentum[d] = mine[kBoundaryBudget + 1 + d];
+    f.energy = mine[kBoundaryBudget + 4];
+    f.work   = mine[kBoundaryBudget + 5];
+    for (int d = 0; d < 3; ++d) f.impulse[d] = mine[kBoundaryBudget + 6 + d];
+    sim.ice->drag_energy_change  = mine[kDragEnergyChange];
+    sim.ice->solid_pressure_work = mine[kSolidPressureWork];
+    sim.ice->gas_interface_work  = mine[kGasInterfaceWork];
+    sim.ice->advection_energy_change = mine[kAdvectionEnergyChange];
+    sim.ice->fallback_energy_change  = mine[kFallbackEnergyChange];
+    sim.ice->trace_energy_change     = mine[kTraceEnergyChange];
+    sim.ice->equilibration_energy_change = mine[kEquilibrationEnergyChange];
+    sim.ice->exchange_energy_change      = mine[kExchangeEnergyChange];
+    sim.ice->exchange_fallback_energy    = mine[kExchangeFallbackEnergy];
+  }
+  for (int d = 0; d < 3; ++d) {
+    sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];
+    sim.diag.bc_impulse[d]       = mine[kBcImpulse + d];
+  }
+  if (sim.coupling)
+    for (int k = 0; k < kNumCouplingCounters; ++k) sim.coupling->counters[k] = mine[kCouplingCounters + k];
   std::vector<std::array<PetscReal, 3>> records(nrec);
   for (PetscInt i = 0; i < nrec; ++i) records[i] = {rec[3 * i], rec[3 * i + 1], rec[3 * i + 2]};
   std::vector<std::array<PetscReal, 2>> gas_records(ngas);

@@ -1,13 +1,18 @@
 // Conserved-quantity monitor (screen + monitor.csv) and the end-of-run summary.json.
 //
-// Energy balance: kinetic + internal (stress work) + removed - external work stays equal to its
-// initial value for a conservative scheme; the relative balance error divides the drift by the
-// largest energy seen (kinetic + internal + |external work|).
+// Energy balance of the solids: kinetic + internal (stress work) + removed - external work stays
+// equal to its initial value for a conservative scheme; the relative balance error divides the drift
+// by the largest energy seen (kinetic + internal + |external work|).
+//
+// A run with gas has the budgets of the whole system (Budget below): mass, momentum and total energy
+// of particles and gases with what crossed the domain faces, what was removed and the chemical
+// energy the burn released; its energy error is the run's balance error.
 #include "../simulation.hpp"
 #include "mpm/swarm_access.hpp"
 #include "mpm/analytic.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -141,6 +146,142 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+namespace {
+// The budgets of a run with gas. Each conserved quantity is a sum of terms that stays at its initial
+// value for a conservative step:
+//   mass      particles + gases + out through open faces + particles removed (outside the domain)
+//   momentum  particles + gases + out through open faces + removed particles - the impulse of the
+//             face pressures on the cells' materials - the impulse of the grid's fixed and symmetry
+//             faces on the particles
+//   energy    particles' kinetic energy + stress work + heat from the gas - the thermal energy
+//             m c_v,s T the burnt reactant took into the gas + gases' kinetic + internal energy +
+//             advected energy and p theta u A dt work out through open faces + removed particles'
+//             kinetic energy and stress work - external work - chemical energy released (dm Q)
+// Burnt mass moves from the particles to the gas: it is in neither "out" term, and what the gas
+// receives (dm (c_v,s T_s + Q) and dm u^2/2) against what the particles lose (m c_v,s T, kinetic
+// energy, stress work) is measured by the sums. Each error is the sum's drift divided by the largest
+// term seen so far (momentum: vector norms).
+struct Budget {
+  PetscReal solid_mass = 0, gas_mass = 0, open_mass = 0, removed_mass = 0;
+  PetscReal solid_momentum[3] = {0, 0, 0}, gas_momentum[3] = {0, 0, 0}, open_momentum[3] = {0, 0, 0};
+  PetscReal face_impulse[3] = {0, 0, 0}, bc_impulse[3] = {0, 0, 0}, removed_momentum[3] = {0, 0, 0};
+  PetscReal solid_kinetic = 0, solid_internal = 0, heat_to_particles = 0, reactant_thermal = 0, gas_kinetic = 0, gas_internal = 0;
+  PetscReal open_energy = 0, open_work = 0, removed_energy = 0, external_work = 0, chemical = 0;
+  PetscReal heat_to_solid_cells = 0, reactant_thermal_cells = 0; // the cells' view of two transfers (not in the sums)
+  PetscReal momentum_to_solid_cells[3] = {0, 0, 0}, momentum_to_nodes[3] = {0, 0, 0}; // the cells' and the nodes' view of the solids' momentum from the gas (not in the sums)
+  PetscReal kinetic_to_solid_cells = 0, kinetic_to_nodes = 0;                          // and of the kinetic energy it brings
+  PetscReal drag_energy_change = 0; // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
+  PetscReal solid_pressure_work = 0; // the kinetic energy the cells' pressure source gives the solids (not in the sums)
+  PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
+  PetscReal advection_energy_change = 0; // the gases' energy the advection did not conserve (not in the sums)
+  PetscReal fallback_energy_change = 0, trace_energy_change = 0; // and the sources: -p dV fallbacks, traces (not in the sums)
+  PetscReal equilibration_energy_change = 0;                      // and the equilibration (not in the sums)
+  PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0; // and the exchange: all of it, its fallbacks' part (the drag's above)
+  PetscReal burnt_particle_energy = 0;   // the kinetic energy and stress work burning took from the particles (not in the sums)
+  PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
+  PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
+  PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;  // relative to the largest term
+};
+
+PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+
+// The terms from the solids' report r and the gas totals, with the counters of every rank; with
+// `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
+PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
+{
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kCoupling = 25, kCount = kCoupling + kNumCouplingCounters };
+  PetscReal local[kCount] = {0}, global[kCount];
+  PetscFunctionBeginUser;
+  const IceBoundaryBudget &f = sim.ice->boundary;
+  local[kOpen] = f.mass;
+  for (int d = 0; d < 3; ++d) {
+    local[kOpen + 1 + d]        = f.momentum[d];
+    local[kOpen + 6 + d]        = f.impulse[d];
+    local[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
+    local[kBcImpulse + d]       = sim.diag.bc_impulse[d];
+  }
+  local[kOpen + 4]      = f.energy;
+  local[kOpen + 5]      = f.work;
+  local[kRemovedMass]   = sim.diag.removed_mass;
+  local[kDrag]          = sim.ice->drag_energy_change;
+  local[kPressureWork]  = sim.ice->solid_pressure_work;
+  local[kInterfaceWork] = sim.ice->gas_interface_work;
+  local[kAdvection]     = sim.ice->advection_energy_change;
+  local[kFallback]      = sim.ice->fallback_energy_change;
+  local[kTrace]         = sim.ice->trace_energy_change;
+  local[kEquilibration] = sim.ice->equilibration_energy_change;
+  local[kExchange]      = sim.ice->exchange_energy_change;
+  local[kExchangeFallback] = sim.ice->exchange_fallback_energy;
+  if (sim.coupling)
+    for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
+  PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
+  const PetscReal *counter = global + kCoupling; // the coupling's (coupling.hpp)
+  b.solid_mass   = r.mass;
+  b.gas_mass     = gas.mass;
+  b.open_mass    = global[kOpen];
+  b.removed_mass = global[kRemovedMass] - counter[kBurntParticleMass]; // burnt mass went to the gas
+  for (int d = 0; d < 3; ++d) {
+    b.solid_momentum[d]   = r.momentum[d];
+    b.gas_momentum[d]     = gas.momentum[d];
+    b.open_momentum[d]    = global[kOpen + 1 + d];
+    b.face_impulse[d]     = global[kOpen + 6 + d];
+    b.bc_impulse[d]       = global[kBcImpulse + d];
+    b.removed_momentum[d] = global[kRemovedMomentum + d] - counter[kBurntParticleMomentum + d];
+  }
+  b.solid_kinetic     = r.kinetic;
+  b.solid_internal    = r.internal;
+  b.heat_to_particles = counter[kHeatToParticles];
+  b.reactant_thermal  = counter[kBurntParticleThermal];
+  b.gas_kinetic       = gas.kinetic_energy;
+  b.gas_internal      = gas.internal_energy;
+  b.open_energy       = global[kOpen + 4];
+  b.open_work         = global[kOpen + 5];
+  b.removed_energy    = r.removed - counter[kBurntParticleEnergy];
+  b.external_work     = r.external_work;
+  b.chemical          = counter[kChemicalEnergy];
+  b.heat_to_solid_cells     = counter[kHeatToSolidCells];
+  b.reactant_thermal_cells  = counter[kReactantThermalCells];
+  b.drag_energy_change      = global[kDrag];
+  b.solid_pressure_work     = global[kPressureWork];
+  b.gas_interface_work      = global[kInterfaceWork];
+  b.advection_energy_change = global[kAdvection];
+  b.fallback_energy_change  = global[kFallback];
+  b.trace_energy_change     = global[kTrace];
+  b.equilibration_energy_change = global[kEquilibration];
+  b.exchange_energy_change      = global[kExchange];
+  b.exchange_fallback_energy    = global[kExchangeFallback];
+  b.burnt_particle_energy   = counter[kBurntParticleEnergy];
+  b.kinetic_to_solid_cells  = counter[kKineticToSolidCells];
+  b.kinetic_to_nodes        = counter[kKineticToNodes];
+  for (int d = 0; d < 3; ++d) {
+    b.momentum_to_solid_cells[d] = counter[kMomentumToSolidCells + d];
+    b.momentum_to_nodes[d]       = counter[kMomentumToNodes + d];
+  }
+  b.mass = b.solid_mass + b.gas_mass + b.open_mass + b.removed_mass;
+  for (int d = 0; d < 3; ++d) b.momentum[d] = b.solid_momentum[d] + b.gas_momentum[d] + b.open_momentum[d] + b.removed_momentum[d] - b.face_impulse[d] - b.bc_impulse[d];
+  b.energy = b.solid_kinetic + b.solid_internal + b.heat_to_particles - b.reactant_thermal + b.gas_kinetic + b.gas_internal + b.open_energy + b.open_work + b.removed_energy - b.external_work - b.chemical;
+  PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
+  if (initial) {
+    init[0] = b.mass;
+    for (int d = 0; d < 3; ++d) init[1 + d] = b.momentum[d];
+    init[4] = b.energy;
+    scale[0] = scale[1] = scale[2] = 0;
+  }
+  const PetscReal mass_terms[] = {b.solid_mass, b.gas_mass, b.open_mass, b.removed_mass};
+  for (PetscReal t : mass_terms) scale[0] = PetscMax(scale[0], PetscAbsReal(t));
+  const PetscReal *momentum_terms[] = {b.solid_momentum, b.gas_momentum, b.open_momentum, b.face_impulse, b.bc_impulse, b.removed_momentum};
+  for (const PetscReal *t : momentum_terms) scale[1] = PetscMax(scale[1], Norm3(t));
+  const PetscReal energy_terms[] = {b.solid_kinetic, b.solid_internal, b.heat_to_particles, b.reactant_thermal, b.gas_kinetic, b.gas_internal, b.open_energy, b.open_work, b.removed_energy, b.external_work, b.chemical};
+  for (PetscReal t : energy_terms) scale[2] = PetscMax(scale[2], PetscAbsReal(t));
+  for (int d = 0; d < 3; ++d) b.momentum_residual[d] = b.momentum[d] - init[1 + d];
+  b.energy_residual = b.energy - init[4];
+  b.mass_error      = scale[0] > 0 ? (b.mass - init[0]) / scale[0] : 0;
+  b.momentum_error  = scale[1] > 0 ? Norm3(b.momentum_residual) / scale[1] : 0;
+  b.energy_error    = scale[2] > 0 ? b.energy_residual / scale[2] : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+} // namespace
+
 PetscReal MonitorEnergyScale() { return energy_scale; }
 void      MonitorSetEnergyScale(PetscReal scale) { energy_scale = scale; }
 
@@ -179,6 +320,12 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     PetscCall(ComputeEnergies(sim, r));
     sim.diag.initial_energy  = r.total - r.external_work;
     sim.diag.initial_kinetic = r.kinetic;
+    if (sim.ice) { // the budgets' initial sums (and the gas totals they are made of)
+      IceTotals gas;
+      Budget    b;
+      PetscCall(IceComputeTotals(*sim.ice, gas));
+      PetscCall(ComputeBudget(sim, r, gas, true, b));
+    }
   }
   PetscBool expansion = PETSC_FALSE; // the -grady cylinder's mean radial velocity gets a column
   PetscReal velocity;
@@ -193,6 +340,13 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure");
+    if (sim.ice) // the budgets (ComputeBudget); balance_error is the energy budget's
+      std::fprintf(csv, ",open_face_mass,removed_particle_mass,mass_budget_error"
+                        ",open_face_momentum_x,open_face_momentum_y,open_face_momentum_z,face_pressure_impulse_x,face_pressure_impulse_y,face_pressure_impulse_z"
+                        ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
+                        ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
+                        ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
@@ -226,7 +380,10 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   }
   if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
   IceTotals gas;
+  Budget    b;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
+  if (sim.ice) PetscCall(ComputeBudget(sim, r, gas, false, b));
+  const PetscReal balance_error = sim.ice ? b.energy_error : r.balance_error; // with gas: the whole system's
   if (sim.ice && gas.max_pressure > sim.ice->peak_pressure) {
     sim.ice->peak_pressure      = gas.max_pressure;
     sim.ice->peak_pressure_time = sim.time;
@@ -234,10 +391,10 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscBool expansion = PETSC_FALSE;
   PetscReal expansion_velocity = 0;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &expansion_velocity));
-  if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1]));
+  if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && csv) {
-    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)r.balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
+    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
     std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.track_pid >= 0)
@@ -245,6 +402,17 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     if (sim.ice)
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy, (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
     if (sim.ice) std::fprintf(csv, ",%.12e", (double)gas.max_pressure);
+    if (sim.ice) {
+      std::fprintf(csv, ",%.16e,%.16e,%.6e", (double)b.open_mass, (double)b.removed_mass, (double)b.mass_error);
+      for (const PetscReal *v : {b.open_momentum, b.face_impulse, b.bc_impulse, b.removed_momentum, b.momentum_residual})
+        for (int d = 0; d < 3; ++d) std::fprintf(csv, ",%.12e", (double)v[d]);
+      std::fprintf(csv, ",%.6e", (double)b.momentum_error);
+      for (PetscReal v : {b.heat_to_particles, b.reactant_thermal, b.open_energy, b.open_work, b.removed_energy, b.chemical, b.energy}) std::fprintf(csv, ",%.16e", (double)v);
+      std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy);
+    }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
     std::fflush(csv);
@@ -264,7 +432,10 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscReal Trms = 0, Tmax = 0;
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(AnalyticTemperatureError(sim, &Trms, &Tmax));
   IceTotals gas;
+  Budget    b;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
+  if (sim.ice) PetscCall(ComputeBudget(sim, r, gas, false, b));
+  const PetscReal balance_error = sim.ice ? b.energy_error : r.balance_error; // with gas: the whole system's
   PetscReal  burnt_mass      = 0;
   PetscInt64 burnt_particles = 0;
   if (sim.coupling) PetscCall(CouplingSummary(sim, &burnt_mass, &burnt_particles));
@@ -322,7 +493,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"internal_energy\": " << r.internal << ",\n";
   s << "  \"external_work\": " << r.external_work << ",\n";
   s << "  \"initial_energy\": " << sim.diag.initial_energy << ",\n";
-  s << "  \"energy_balance_error\": " << r.balance_error << ",\n";
+  s << "  \"energy_balance_error\": " << balance_error << ",\n";
+  if (sim.ice) s << "  \"solid_energy_balance_error\": " << r.balance_error << ",\n";
   s << "  \"momentum\": [" << r.momentum[0] << ", " << r.momentum[1] << ", " << r.momentum[2] << "],\n";
   s << "  \"mass\": " << r.mass << ",\n";
   if (sim.analytic) {
@@ -352,6 +524,32 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }
+  if (sim.ice) { // the budgets (ComputeBudget)
+    auto vec = [](const PetscReal v[3]) {
+      std::ostringstream o;
+      o.precision(10);
+      o << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
+      return o.str();
+    };
+    const PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
+    s << "  \"budget\": {\n";
+    s << "    \"mass\": {\"particles\": " << b.solid_mass << ", \"gas\": " << b.gas_mass << ", \"open_faces\": " << b.open_mass << ", \"removed_particles\": " << b.removed_mass;
+    s << ", \"initial\": " << init[0] << ", \"residual\": " << b.mass - init[0] << ", \"largest_term\": " << scale[0] << ", \"error\": " << b.mass_error << "},\n";
+    const PetscReal p0[3] = {init[1], init[2], init[3]};
+    s << "    \"momentum\": {\"particles\": " << vec(b.solid_momentum) << ", \"gas\": " << vec(b.gas_momentum) << ", \"open_faces\": " << vec(b.open_momentum);
+    s << ", \"face_pressure_impulse\": " << vec(b.face_impulse) << ", \"grid_face_impulse\": " << vec(b.bc_impulse) << ", \"removed_particles\": " << vec(b.removed_momentum);
+    s << ", \"initial\": " << vec(p0) << ", \"residual\": " << vec(b.momentum_residual) << ", \"largest_term\": " << scale[1] << ", \"error\": " << b.momentum_error;
+    s << ", \"to_solid_cells\": " << vec(b.momentum_to_solid_cells) << ", \"to_nodes\": " << vec(b.momentum_to_nodes) << "},\n";
+    s << "    \"energy\": {\"particles_kinetic\": " << b.solid_kinetic << ", \"particles_internal\": " << b.solid_internal << ", \"heat_to_particles\": " << b.heat_to_particles;
+    s << ", \"reactant_thermal\": " << b.reactant_thermal << ", \"gas_kinetic\": " << b.gas_kinetic << ", \"gas_internal\": " << b.gas_internal;
+    s << ", \"open_faces\": " << b.open_energy << ", \"open_face_work\": " << b.open_work << ", \"removed_particles\": " << b.removed_energy;
+    s << ", \"external_work\": " << b.external_work << ", \"chemical\": " << b.chemical;
+    s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
+    s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
+    s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"burnt_particles\": " << b.burnt_particle_energy << "}\n";
+    s << "  },\n";
+  }
   if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
     s << "  \"rank_phase_seconds\": {";
     for (int i = 0; i <= num_phases; ++i) {
@@ -373,8 +571,13 @@ PetscErrorCode WriteSummary(Simulation &sim)
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)r.balance_error, (double)(rate / sim.size), path.c_str()));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
   if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
+  if (sim.ice) {
+    char chemical[128] = "";
+    if (b.chemical > 0) std::snprintf(chemical, sizeof(chemical), ", %.3e of the chemical energy released (%.4g J)", (double)(b.energy_residual / b.chemical), (double)b.chemical);
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Budgets (particles, gases, open faces, removed particles, chemical energy): mass error %.3e, momentum %.3e, energy %.3e of the largest term (%.4g kg, %.4g kg m/s, %.4g J); energy residual %.4g J%s\n", (double)b.mass_error, (double)b.momentum_error, (double)b.energy_error, (double)sim.diag.budget_scale[0], (double)sim.diag.budget_scale[1], (double)sim.diag.budget_scale[2], (double)b.energy_residual, chemical));
+  }
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: temperature error rms %.4e K, max %.4e K\n", sim.analytic->Name(), (double)Trms, (double)Tmax));
   PetscFunctionReturn(PETSC_SUCCESS);

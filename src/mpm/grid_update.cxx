@@ -122,6 +122,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   const PetscInt       owned = xm[0] * xm[1] * xm[2];
   if ((PetscInt)g.velocity_written.size() != owned) g.velocity_written.assign(owned, 1); // (a new layout: write every node once)
   unsigned char *written = g.velocity_written.data();
+  PetscReal      bc_impulse[3] = {0, 0, 0}; // what the face conditions take from the new nodal momenta (the budgets with gas)
   // node (i, j, k), owned index l: its velocities from its sums
   auto update = [&](PetscInt i, PetscInt j, PetscInt k, PetscInt l) {
     PetscScalar *vout = vel + l * vdof, *vout_local = vel_local ? vel_local + index(i, j, k) * vdof : nullptr;
@@ -178,8 +179,11 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
     }
     for (PetscInt vf = 0; vf < nvf; ++vf) {
       if (vf != rigid) { // the rigid velocity is prescribed
+        const PetscReal before[3] = {v_new[vf][0], v_new[vf][1], v_new[vf][2]};
         ApplyBoundaryConditions(g, node, v_new[vf]);
         if (!integrate) ApplyBoundaryConditions(g, node, v_old[vf]);
+        else // the particles' momentum changes by m_I (v_new - v_old) summed over the nodes: this is the faces' part
+          for (PetscInt a = 0; a < dim; ++a) bc_impulse[a] += mass[vf] * (v_new[vf][a] - before[a]);
       }
       PetscScalar *vn = vout + vf * 2 * dim;
       for (PetscInt a = 0; a < dim; ++a) {
@@ -196,6 +200,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   ForEachMarkedRun(g, reached, xs, xm, [&](PetscInt l, PetscInt, PetscInt count, PetscInt i, PetscInt j, PetscInt k) {
     for (PetscInt n = 0; n < count; ++n) update(i + n, j, k, l + n);
   }, written);
+  for (PetscInt a = 0; a < dim; ++a) sim.diag.bc_impulse[a] += bc_impulse[a];
   if (vel_local) PetscCall(VecRestoreArray(g.velocity_local, &vel_local));
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArrayRead(g.nodal, &nodal));

@@ -161,6 +161,7 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
       for (PetscInt d = 0; d < dim; ++d) v2 += v[p * dim + d] * v[p * dim + d];
       sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
       sim.diag.removed_mass += mass[p];
+      for (PetscInt d = 0; d < dim; ++d) sim.diag.removed_momentum[d] += mass[p] * v[p * dim + d];
       sim.diag.removed_particles++;
       ++local;
     }
