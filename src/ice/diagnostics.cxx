@@ -106,15 +106,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
   PetscCall(VecGetArrayRead(ice.local, &a));
   // the face pressure of IceSources (sources.cxx), the same expression on the same cells, and the
   // shock viscosity that the gases (not the solids) feel there
-  auto face_pressure = [&](PetscInt L, PetscInt R) {
-    const PetscScalar *cL = a + L * S, *cR = a + R * S;
-    PetscReal          rL = 0, rR = 0;
-    for (PetscInt m = 0; m < n; ++m) {
-      rL += cL[ice.Offset(m, icef::rho)];
-      rR += cR[ice.Offset(m, icef::rho)];
-    }
-    return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
-  };
+  auto face_pressure = [&](PetscInt L, PetscInt R) { return IceFacePressure(ice, a, L, R); };
   const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
   auto       face_q  = [&](PetscInt d, PetscInt R) { return viscous ? IceFaceViscosity(ice, a, d, R) : 0.0; };
   const PetscReal V = ice.CellVolume();

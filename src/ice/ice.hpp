@@ -256,6 +256,9 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+// Face pressure from continuity of acceleration between local cells L and R (sources.cxx):
+// (p_R rho_L + p_L rho_R)/(rho_L + rho_R), rho the sum of the bulk densities, Pa.
+PetscReal      IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L, PetscInt R);
 // Shock viscosity (viscosity.cxx) of the face between local cells R - lstride[d] and R, Pa.
 PetscReal      IceFaceViscosity(const IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt R);
 // Gases only; internal energy rho_m V e(rho_micro = 1/spvol, T) with the cold energy of the EOS.

@@ -35,6 +35,17 @@ PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscIn
   return (rho * eos.cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * eos.cv);
 }
 
+PetscReal IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L, PetscInt R)
+{
+  const PetscScalar *cL = a + L * ice.stride, *cR = a + R * ice.stride;
+  PetscReal          rL = 0, rR = 0;
+  for (PetscInt m = 0; m < ice.nmat; ++m) {
+    rL += cL[ice.Offset(m, icef::rho)];
+    rR += cR[ice.Offset(m, icef::rho)];
+  }
+  return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
+}
+
 PetscErrorCode IceSources(IceSolver &ice)
 {
   PetscScalar   *a;
@@ -42,15 +53,7 @@ PetscErrorCode IceSources(IceSolver &ice)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_sources, 0, 0, 0, 0));
   PetscCall(IceGetLocalArray(ice, &a));
-  auto face_pressure = [&](PetscInt L, PetscInt R) {
-    const PetscScalar *cL = a + L * S, *cR = a + R * S;
-    PetscReal          rL = 0, rR = 0;
-    for (PetscInt m = 0; m < n; ++m) {
-      rL += cL[ice.Offset(m, icef::rho)];
-      rR += cR[ice.Offset(m, icef::rho)];
-    }
-    return (cR[ice.CellOffset(icef::press)] * rL + cL[ice.CellOffset(icef::press)] * rR) / (rL + rR);
-  };
+  auto face_pressure = [&](PetscInt L, PetscInt R) { return IceFacePressure(ice, a, L, R); };
   const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
   // the cell exchange follows and gives each material the kinetic energy its drag removes
   const bool drag_settles = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
