@@ -518,7 +518,7 @@ def main():
     bs = sub.add_parser("burn_symmetry")
     bs.add_argument("--rate", type=float, default=1.0, help="Simple Burn A (kg/(m^2 s))")
     bs.add_argument("--final-time", type=float, default=1e-4)
-    bs.add_argument("--tol", type=float, default=2e-3)
+    bs.add_argument("--tol", type=float, default=1e-6)
     args = p.parse_args()
     {"rest": rest, "squeeze": squeeze, "lame": lame, "piston": piston, "parallel": parallel, "burn": burn, "burn_symmetry": burn_symmetry, "exploding": exploding}[args.cmd](args)
 

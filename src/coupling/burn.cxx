@@ -189,6 +189,9 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           in.dt            = ice.dt;
           in.M_s           = M;
           in.M_tiny        = ice.rho_tiny * in.rho_s * V;
+          // a corner below 1e-9 of the largest holds no reactant: a particle domain whose edge meets
+          // the node gives it a round-off weight, and Simple Burn's contrast < 1 would flip on it
+          if (Mmin < 1e-9 * Mmax) Mmin = 0;
           in.mass_contrast = Mmax > 0 ? (Mmax - Mmin) / Mmax : 0;
           in.T_hot         = T_hot;
           in.n_particles   = M > 2 * in.M_tiny ? 1 : 0;

@@ -2,9 +2,9 @@
 //
 // Node -> cell weights: a cell averages its 2^dim corner nodes (1/4 in 2-D, 1/8 in 3-D); a node on
 // a domain face has only half the cells around it, so its weight is doubled there (ice.md 7.10),
-// and every node's mass reaches the cells in full. Cell -> node: a node takes the solid-mass
-// weighted mean of the increments of the cells around it, so a cell that holds only the tiny
-// trace mass of a solid (which the exchange drags to the gas velocity) does not move the solid.
+// and every node's mass reaches the cells in full. Cell -> node: the same weights back (a node
+// takes sum_c w_ci dX_c of the cells' increments per unit mass), so the nodes receive exactly the
+// momentum and heat that the cells gave their solids (CouplingIncrementsToNodes).
 #include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
@@ -294,8 +294,8 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   const PetscInt     dim = ice.dim, dof = c.IncDof(dim), vdof = g.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(c.ev_increments, 0, 0, 0, 0));
-  // per owned node and velocity field: the solid-mass weighted mean of the increments of the cells
-  // around it, over the solids that move in that field
+  // per owned node and velocity field: the increments of the cells around it, with the weights of
+  // the projection (below)
   PetscCall(DMDAGetCorners(c.da_inc, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   const PetscScalar *nodal; // the nodal masses of the P2G, for the impulse of the face conditions
   const PetscInt     node_dof = g.num_velocity_fields * g.NodeStride();
@@ -320,22 +320,38 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
           }
         }
       }
+  // Conservative transfer: cell c gives its solid s the increment dX_c per unit of its mass
+  // M_c = sum_i w_ci m_i,s (the projection's node weights), and node i's share of that mass is
+  // w_ci m_i,s, so node i takes dX_i,s = sum_c w_ci dX_c with w_ci its node weight (1/4 inside in
+  // 2-D, more on the domain faces: the weights of a node sum to 1). Then what the nodes (and
+  // through them the particles, sum_p m_p sum_i N_ip dX_i = sum_i m_i dX_i) receive is what the
+  // cells gave. A field that carries several solids takes their nodal-mass-weighted mean.
+  const LocalNodeIndex index(sim.grid);
+  const PetscInt       mstride = 2 + dim;
+  const PetscScalar   *solid_mass;
+  PetscCall(VecGetArrayRead(c.mass_local, &solid_mass));
   PetscInt l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
     for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
       for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
-        PetscReal weight[2] = {0, 0}, dv[2][3] = {{0, 0, 0}, {0, 0, 0}}, dT[2] = {0, 0};
-        ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
-          if (!inside) return;
-          const PetscScalar *cl = a + idx * ice.stride;
-          for (PetscInt s = 0; s < c.nsolid; ++s) {
-            const PetscInt  m = c.first + s, f = c.field_of[s];
-            const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
-            weight[f] += M;
-            for (PetscInt d = 0; d < dim; ++d) dv[f][d] += M * (cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)]);
-            dT[f] += M * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
-          }
-        });
+        PetscReal       weight[2] = {0, 0}, dv[2][3] = {{0, 0, 0}, {0, 0, 0}}, dT[2] = {0, 0};
+        const PetscInt  node_ijk[3] = {i, j, k};
+        const PetscReal w_node      = NodeWeight(ice, node_ijk);
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscReal ms = solid_mass[index(i, j, k) * c.mass_stride + s * mstride];
+          if (!(ms > 0)) continue;
+          const PetscInt m = c.first + s, f = c.field_of[s];
+          PetscReal      sum_v[3] = {0, 0, 0}, sum_T = 0;
+          ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
+            if (!inside) return;
+            const PetscScalar *cl = a + idx * ice.stride;
+            for (PetscInt d = 0; d < dim; ++d) sum_v[d] += cl[ice.Offset(m, icef::vel_L + d)] - cl[ice.Offset(m, icef::vel + d)];
+            sum_T += cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)];
+          });
+          weight[f] += ms;
+          for (PetscInt d = 0; d < dim; ++d) dv[f][d] += ms * w_node * sum_v[d];
+          dT[f] += ms * w_node * sum_T;
+        }
         const PetscInt node[3] = {i, j, k};
         for (PetscInt f = 0; f < c.nfield; ++f) {
           PetscScalar *ni = inc + l * dof + 1 + f * (dim + 1);
@@ -362,6 +378,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
           ni[dim] = weight[f] > 0 ? dT[f] / weight[f] : 0;
         }
       }
+  PetscCall(VecRestoreArrayRead(c.mass_local, &solid_mass));
   PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArray(c.inc_global, &inc));

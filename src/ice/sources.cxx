@@ -88,7 +88,11 @@ PetscErrorCode IceSources(IceSolver &ice)
           for (PetscInt d = 0; d < 3; ++d) {
             const PetscReal source = d < dim ? -ice.dt * theta * (grad_p[d] + (mat.solid ? 0 : grad_q[d])) + ice.dt * rho * ice.gravity[d] : 0;
             const PetscReal u      = c[ice.Offset(m, icef::vel + d)];
-            const PetscReal uL     = (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
+            // mass lost (a burning solid) leaves at the material's own velocity and takes its share
+            // of the force: the rest keeps the acceleration of the whole. (With the loss's own
+            // momentum, a burnt-out particle's mass taken from a cell that holds less of it left a
+            // floored rho_L with a finite momentum: 1e9 m/s on the solid's nodes.)
+            const PetscReal uL = dr < 0 ? (rho > 0 ? u + source / rho : u) : (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
             c[ice.Offset(m, icef::vel_L + d)] = uL;
             u2 += u * u;
             uL2 += uL * uL;

@@ -474,7 +474,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     csv = nullptr;
   }
   std::ostringstream s;
-  s.precision(10);
+  s.precision(17); // round-trip: the budgets are checked to 1e-12
   s << "{\n";
   s << "  \"scene\": \"" << sim.scene << "\",\n";
   s << "  \"dim\": " << sim.grid.dim << ",\n";
@@ -527,7 +527,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   if (sim.ice) { // the budgets (ComputeBudget)
     auto vec = [](const PetscReal v[3]) {
       std::ostringstream o;
-      o.precision(10);
+      o.precision(17);
       o << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
       return o.str();
     };
