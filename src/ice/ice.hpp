@@ -140,6 +140,20 @@ struct IceSolver {
   Vec state = nullptr, local = nullptr;
   Mat A = nullptr;
   KSP ksp = nullptr;
+  // Semi-implicit pressure KSP (pressure_implicit.cxx, setup.cxx): ksp_jacobi (CG + Jacobi, prefix
+  // -ice_pressure_jacobi_) takes a step's solves while the matrix is diagonally dominant, max over
+  // rows of sum |offdiag| / diag below jacobi_below (-ice_pressure_jacobi_below; with the default
+  // preconditioner only; 0: never); ksp's
+  // preconditioner is built at a step's first solve and reused by its later outer iterations, and
+  // rebuilt every pc_lag steps only (1: every step).
+  KSP       ksp_jacobi   = nullptr;
+  PetscReal jacobi_below = 0.5;
+  PetscInt  pc_lag       = 1;
+  PetscInt  pc_built_step = -1;                  // gas step of the last preconditioner set-up
+  PetscBool matrix_aij   = PETSC_FALSE;          // A is (MPI/Seq)AIJ: refill without zeroing
+  PetscReal dominance = 0, dominance_max = 0;    // of the last step's first matrix, and the largest seen
+  PetscInt64 jacobi_solves = 0, pc_setups = 0;
+  PetscLogEvent ev_p_assemble = 0, ev_p_solve = 0;
   Vec dp = nullptr, rhs = nullptr;
   PetscInt stride = 0;
   PetscInt xs[3] = {0, 0, 0}, xm[3] = {1, 1, 1};   // owned cells

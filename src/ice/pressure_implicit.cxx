@@ -18,13 +18,17 @@
 namespace burst {
 
 // Assembles the pressure matrix on da_p from the current face velocities (for the donor theta)
-// and the effective face specific volumes.
-static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a)
+// and the effective face specific volumes. *dominance: max over this rank's rows of
+// sum |offdiag| / diag (< 1; about 2 dim C^2 / (1 + 2 dim C^2) for an acoustic Courant number C).
+static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, PetscReal *dominance)
 {
   const PetscInt  S = ice.stride, n = ice.nmat, dim = ice.dim;
   const PetscReal V = ice.CellVolume();
+  PetscReal       dom = 0;
   PetscFunctionBeginUser;
-  PetscCall(MatZeroEntries(ice.A));
+  PetscCall(PetscLogEventBegin(ice.ev_p_assemble, 0, 0, 0, 0));
+  // An AIJ matrix keeps the DMDA's pattern and every entry of it is inserted below, so no zeroing.
+  if (!ice.matrix_aij) PetscCall(MatZeroEntries(ice.A));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -32,7 +36,7 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a)
         MatStencil     row = {k, j, i, 0}, cols[7];
         PetscScalar    vals[7];
         PetscInt       nc   = 1;
-        PetscReal      diag = V * a[idx * S + ice.CellOffset(icef::sum_kappa)];
+        PetscReal      diag = V * a[idx * S + ice.CellOffset(icef::sum_kappa)], offsum = 0;
         cols[0]             = row;
         const PetscInt ijk[3] = {i, j, k};
         for (PetscInt d = 0; d < dim; ++d)
@@ -49,6 +53,7 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a)
             }
             const PetscReal coef = (V / ice.h[d]) / ice.h[d] * ice.dt * ice.dt * sum;
             diag += coef;
+            offsum += std::fabs(coef);
             MatStencil col = row;
             if (d == 0) col.i = nb;
             else if (d == 1) col.j = nb;
@@ -57,10 +62,13 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a)
             vals[nc++] = -coef;
           }
         vals[0] = diag;
+        dom = diag > 0 ? PetscMax(dom, offsum / diag) : 1;
         PetscCall(MatSetValuesStencil(ice.A, 1, &row, nc, cols, vals, INSERT_VALUES));
       }
   PetscCall(MatAssemblyBegin(ice.A, MAT_FINAL_ASSEMBLY));
   PetscCall(MatAssemblyEnd(ice.A, MAT_FINAL_ASSEMBLY));
+  *dominance = dom;
+  PetscCall(PetscLogEventEnd(ice.ev_p_assemble, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -78,6 +86,7 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscReal residual = PETSC_MAX_REAL, smallest = PETSC_MAX_REAL;
   PetscInt  k;
+  bool      use_jacobi = false;
   for (k = 0; k <= ice.outer_max_iterations; ++k) {
     PetscCall(IceGetLocalArray(ice, &a));
     // residual of the volume balance
@@ -108,14 +117,54 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
     PetscCheck(residual < 100 * smallest || smallest == 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the semi-implicit pressure diverges (outer iteration %" PetscInt_FMT ": max |residual|/V = %g, smallest so far %g); reduce -ice_cfl", ice.step, k, (double)residual, (double)smallest);
     smallest = PetscMin(smallest, residual);
     // solve A dP = r
-    PetscCall(AssembleMatrix(ice, a));
+    PetscReal dom;
+    PetscCall(AssembleMatrix(ice, a, &dom));
     PetscCall(IceRestoreLocalArray(ice, &a));
-    PetscCall(KSPSetOperators(ice.ksp, ice.A, ice.A));
-    PetscCall(KSPSolve(ice.ksp, ice.rhs, ice.dp));
+    if (k == 0) {
+      // the step's preconditioner: Jacobi while the matrix is strongly diagonally dominant (small
+      // acoustic Courant number: a few iterations and no set-up), else the KSP's own, built now if
+      // pc_lag steps have passed and reused by the later outer iterations
+      PetscCallMPI(MPI_Allreduce(&dom, &ice.dominance, 1, MPIU_REAL, MPI_MAX, ice.comm));
+      ice.dominance_max = PetscMax(ice.dominance_max, ice.dominance);
+      use_jacobi        = ice.ksp_jacobi && ice.dominance < ice.jacobi_below;
+      if (!use_jacobi) {
+        const PetscBool rebuild = (PetscBool)(ice.pc_built_step < 0 || ice.step - ice.pc_built_step >= ice.pc_lag || ice.step < ice.pc_built_step);
+        PetscCall(KSPSetReusePreconditioner(ice.ksp, (PetscBool)!rebuild));
+        if (rebuild) {
+          ice.pc_built_step = ice.step;
+          ice.pc_setups += 1;
+        }
+      }
+      PetscCall(PetscInfo(ice.ksp, "Gas step %" PetscInt_FMT ": pressure matrix dominance max sum|offdiag|/diag = %g, %s\n", ice.step, (double)ice.dominance, use_jacobi ? "Jacobi" : "the -ice_pressure_ preconditioner"));
+    } else if (!use_jacobi) PetscCall(KSPSetReusePreconditioner(ice.ksp, PETSC_TRUE));
+    KSP                ksp = use_jacobi ? ice.ksp_jacobi : ice.ksp;
     KSPConvergedReason reason;
     PetscInt           its;
-    PetscCall(KSPGetConvergedReason(ice.ksp, &reason));
-    PetscCall(KSPGetIterationNumber(ice.ksp, &its));
+    PetscCall(PetscLogEventBegin(ice.ev_p_solve, 0, 0, 0, 0));
+    PetscCall(KSPSetOperators(ksp, ice.A, ice.A));
+    PetscCall(KSPSolve(ksp, ice.rhs, ice.dp));
+    PetscCall(KSPGetConvergedReason(ksp, &reason));
+    PetscCall(KSPGetIterationNumber(ksp, &its));
+    PetscCall(PetscLogEventEnd(ice.ev_p_solve, 0, 0, 0, 0));
+    if (use_jacobi && reason <= 0) {
+      // Jacobi did not make it (it should not at this dominance): the step goes to the KSP's own
+      // preconditioner, rebuilt now
+      PetscCall(PetscInfo(ice.ksp, "Gas step %" PetscInt_FMT ": CG + Jacobi %s after %" PetscInt_FMT " iterations; the -ice_pressure_ preconditioner takes the step\n", ice.step, KSPConvergedReasons[reason], its));
+      ice.ksp_iterations += its;
+      ice.ksp_iterations_total += its;
+      use_jacobi = false;
+      ksp        = ice.ksp;
+      PetscCall(KSPSetReusePreconditioner(ksp, PETSC_FALSE));
+      ice.pc_built_step = ice.step;
+      ice.pc_setups += 1;
+      PetscCall(PetscLogEventBegin(ice.ev_p_solve, 0, 0, 0, 0));
+      PetscCall(KSPSetOperators(ksp, ice.A, ice.A));
+      PetscCall(KSPSolve(ksp, ice.rhs, ice.dp));
+      PetscCall(PetscLogEventEnd(ice.ev_p_solve, 0, 0, 0, 0));
+      PetscCall(KSPGetConvergedReason(ksp, &reason));
+      PetscCall(KSPGetIterationNumber(ksp, &its));
+    }
+    if (use_jacobi) ice.jacobi_solves += 1;
     PetscCheck(reason > 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the pressure solve (-ice_pressure_ksp_type, -ice_pressure_pc_type) did not converge: %s after %" PetscInt_FMT " iterations", ice.step, KSPConvergedReasons[reason], its);
     ice.ksp_iterations += its;
     ice.ksp_iterations_total += its;

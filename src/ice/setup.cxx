@@ -296,11 +296,49 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
       PetscCall(PCHYPRESetType(pc, "boomeramg"));
     }
     PetscCall(KSPSetFromOptions(ice.ksp));
+    PetscBool pc_type_set;
+    PetscCall(PetscOptionsHasName(nullptr, "ice_pressure_", "-pc_type", &pc_type_set));
+    PetscOptionsBegin(ice.comm, "ice_pressure_", "Semi-implicit pressure preconditioner", "");
+    PetscCall(PetscOptionsReal("-jacobi_below", "CG + Jacobi for a step whose pressure matrix has max_rows sum|offdiag|/diag below this (default preconditioner only; 0: never)", "", ice.jacobi_below, &ice.jacobi_below, nullptr));
+    PetscCall(PetscOptionsInt("-pc_lag", "Rebuild the preconditioner every this many gas steps (it is reused by a step's later outer iterations)", "", ice.pc_lag, &ice.pc_lag, nullptr));
+    PetscOptionsEnd();
+    PetscCheck(ice.pc_lag >= 1, ice.comm, PETSC_ERR_USER_INPUT, "-ice_pressure_pc_lag must be at least 1");
+    if (pc_type_set) ice.jacobi_below = 0; // the user's preconditioner for every solve
+    if (ice.jacobi_below > 0) {
+      // Its own prefix, -ice_pressure_jacobi_ (e.g. -ice_pressure_jacobi_ksp_monitor); the
+      // relative tolerance is the main KSP's.
+      PC        pcj;
+      PetscReal rtol;
+      PetscCall(KSPGetTolerances(ice.ksp, &rtol, nullptr, nullptr, nullptr));
+      PetscCall(KSPCreate(ice.comm, &ice.ksp_jacobi));
+      PetscCall(KSPSetOptionsPrefix(ice.ksp_jacobi, "ice_pressure_jacobi_"));
+      PetscCall(KSPSetDM(ice.ksp_jacobi, ice.da_p));
+      PetscCall(KSPSetDMActive(ice.ksp_jacobi, PETSC_FALSE));
+      PetscCall(KSPSetType(ice.ksp_jacobi, KSPCG));
+      PetscCall(KSPSetTolerances(ice.ksp_jacobi, rtol, 1e-50, PETSC_DEFAULT, 200)); // beyond that the step falls back to ksp
+      PetscCall(KSPGetPC(ice.ksp_jacobi, &pcj));
+      PetscCall(PCSetType(pcj, PCJACOBI));
+      PetscCall(KSPSetFromOptions(ice.ksp_jacobi));
+      PetscCall(PetscObjectTypeCompare((PetscObject)pcj, PCJACOBI, &pc_type_set));
+      PetscCheck(pc_type_set, ice.comm, PETSC_ERR_USER_INPUT, "-ice_pressure_jacobi_pc_type: only jacobi");
+    }
+    PetscCall(PetscLogEventRegister("ICE_PAssemble", KSP_CLASSID, &ice.ev_p_assemble));
+    PetscCall(PetscLogEventRegister("ICE_PSolve", KSP_CLASSID, &ice.ev_p_solve));
     PetscBool mat_type_set, structured;
     PetscCall(PetscOptionsHasName(nullptr, "ice_pressure_", "-dm_mat_type", &mat_type_set));
     PetscCall(PetscObjectTypeCompareAny((PetscObject)pc, &structured, PCPFMG, PCSMG, ""));
     if (structured && !mat_type_set) PetscCall(DMSetMatType(ice.da_p, MATHYPRESTRUCT));
     PetscCall(DMCreateMatrix(ice.da_p, &ice.A));
+    // Every nonzero of the DMDA's pattern is set at each assembly (pressure_implicit.cxx), so an AIJ
+    // matrix is refilled without MatZeroEntries; all rows are owned, so no stash communication.
+    PetscCall(PetscObjectTypeCompareAny((PetscObject)ice.A, &ice.matrix_aij, MATMPIAIJ, MATSEQAIJ, ""));
+    if (ice.matrix_aij) {
+      PetscCall(MatSetOption(ice.A, MAT_NO_OFF_PROC_ENTRIES, PETSC_TRUE));
+      PetscCall(MatSetOption(ice.A, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE));
+    } else { // hypre's structured matrix (3-D PFMG) has no MatGetDiagonal: no Jacobi path
+      PetscCall(KSPDestroy(&ice.ksp_jacobi));
+      ice.jacobi_below = 0;
+    }
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -508,6 +546,7 @@ IceSolver::~IceSolver()
   VecDestroy(&rhs);
   MatDestroy(&A);
   KSPDestroy(&ksp);
+  KSPDestroy(&ksp_jacobi);
   DMDestroy(&da_p);
   DMDestroy(&da);
 }
