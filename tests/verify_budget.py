@@ -255,7 +255,7 @@ def main():
     b.add_argument("--ranks", type=int, default=1)
     b.add_argument("--extra", default="")
     bo = sub.add_parser("burnout")
-    bo.add_argument("--tol", type=float, default=1e-10)
+    bo.add_argument("--tol", type=float, default=1e-12)
     bo.add_argument("--end-tol", type=float, default=1e-2)
     bo.add_argument("--ranks", type=int, default=1)
     bo.add_argument("--extra", default="")

@@ -188,7 +188,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           in.area          = BurnSurfaceArea(dim, ice.h, grad, V);
           in.dt            = ice.dt;
           in.M_s           = M;
-          in.M_tiny        = ice.rho_tiny * in.rho_s * V;
+          in.M_tiny        = ice.rho_tiny * c.rho0[s] * V; // the projection's floor (CouplingProjectSolids): M - M_tiny is the particles'
           // a corner below 1e-9 of the largest holds no reactant: a particle domain whose edge meets
           // the node gives it a round-off weight, and Simple Burn's contrast < 1 would flip on it
           if (Mmin < 1e-9 * Mmax) Mmin = 0;
@@ -226,7 +226,8 @@ PetscErrorCode CouplingBurn(Simulation &sim)
             if (share == 0) continue;
             AddConversion(ice, target[d], g, share * dr, u, cv * Ts + out.Q);
           }
-          c.burnt_fraction[idx * c.nsolid + s] = out.dm / M;
+          // of the particles' mass in the cell, M - M_tiny: they lose exactly dm
+          c.burnt_fraction[idx * c.nsolid + s] = out.dm / (M - in.M_tiny);
           c.burnt_mass += out.dm;
           c.counters[kChemicalEnergy] += out.dm * out.Q; // the products' energy beyond the reactant's c_v,s T_s
           c.counters[kReactantThermalCells] += out.dm * cv * Ts;
