@@ -151,6 +151,11 @@ struct ParticleKernel {
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { value += N * inc[index(i, j, k) * dof + q]; });
       if (pressure) out[p] = value - c.p_ref;
       else {
+        // The increments are the cells' (per unit of the solid's mass there); a particle colder than
+        // a cell's solid can be handed more cooling than it holds (a trace of solid at the gas's
+        // temperature relaxed in one step): it keeps at least half its temperature. What is held
+        // back shows in the budget as heat the particles did not receive.
+        value = PetscMax(value, -0.5 * out[p]);
         out[p] += value;
         heat += m[p] * sim.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
       }

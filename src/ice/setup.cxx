@@ -296,14 +296,20 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
       PetscCall(PCHYPRESetType(pc, "boomeramg"));
     }
     PetscCall(KSPSetFromOptions(ice.ksp));
-    PetscBool pc_type_set;
-    PetscCall(PetscOptionsHasName(nullptr, "ice_pressure_", "-pc_type", &pc_type_set));
+    // A user who chooses or watches the pressure KSP (its type, preconditioner, view, monitor or
+    // converged reason) gets that KSP for every solve, unless -ice_pressure_jacobi_below is given.
+    PetscBool pc_type_set = PETSC_FALSE, jacobi_below_set = PETSC_FALSE;
+    for (const char *name : {"-pc_type", "-ksp_type", "-ksp_view", "-ksp_monitor", "-ksp_converged_reason"}) {
+      PetscBool set;
+      PetscCall(PetscOptionsHasName(nullptr, "ice_pressure_", name, &set));
+      pc_type_set = (PetscBool)(pc_type_set || set);
+    }
     PetscOptionsBegin(ice.comm, "ice_pressure_", "Semi-implicit pressure preconditioner", "");
-    PetscCall(PetscOptionsReal("-jacobi_below", "CG + Jacobi for a step whose pressure matrix has max_rows sum|offdiag|/diag below this (default preconditioner only; 0: never)", "", ice.jacobi_below, &ice.jacobi_below, nullptr));
+    PetscCall(PetscOptionsReal("-jacobi_below", "CG + Jacobi for a step whose pressure matrix has max_rows sum|offdiag|/diag below this (default preconditioner, and no -ice_pressure_ksp_type/_view/_monitor/_converged_reason, unless given; 0: never)", "", ice.jacobi_below, &ice.jacobi_below, &jacobi_below_set));
     PetscCall(PetscOptionsInt("-pc_lag", "Rebuild the preconditioner every this many gas steps (it is reused by a step's later outer iterations)", "", ice.pc_lag, &ice.pc_lag, nullptr));
     PetscOptionsEnd();
     PetscCheck(ice.pc_lag >= 1, ice.comm, PETSC_ERR_USER_INPUT, "-ice_pressure_pc_lag must be at least 1");
-    if (pc_type_set) ice.jacobi_below = 0; // the user's preconditioner for every solve
+    if (pc_type_set && !jacobi_below_set) ice.jacobi_below = 0; // the user's KSP for every solve
     if (ice.jacobi_below > 0) {
       // Its own prefix, -ice_pressure_jacobi_ (e.g. -ice_pressure_jacobi_ksp_monitor); the
       // relative tolerance is the main KSP's.
