@@ -19,6 +19,7 @@
 #include "../../models/gas_eos/gas_eos.hpp"
 #include <petscdmda.h>
 #include <petscksp.h>
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -194,6 +195,13 @@ struct IceSolver {
   PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
   PetscReal equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
   PetscReal gas_energy_mark = 0;             // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
+  // The nine energy diagnostics above in one fixed order, for the monitor's reduction and the
+  // checkpoint (both keep them in this order).
+  static constexpr int kEnergyDiagnostics = 9;
+  std::array<PetscReal *, kEnergyDiagnostics> EnergyDiagnostics()
+  {
+    return {&drag_energy_change, &solid_pressure_work, &gas_interface_work, &advection_energy_change, &fallback_energy_change, &trace_energy_change, &equilibration_energy_change, &exchange_energy_change, &exchange_fallback_energy};
+  }
   // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
   PetscReal *boundary_flux_sink = nullptr;

@@ -69,16 +69,8 @@ enum RankValue : int {
   kBoundaryBudget,                      // the gas's IceBoundaryBudget: mass, momentum (3), energy, work, impulse (3)
   kRemovedMomentum = kBoundaryBudget + 9, // 3
   kBcImpulse = kRemovedMomentum + 3,      // 3
-  kDragEnergyChange = kBcImpulse + 3,     // the gas's drag_energy_change and solid_pressure_work
-  kSolidPressureWork,
-  kGasInterfaceWork,
-  kAdvectionEnergyChange,
-  kFallbackEnergyChange,
-  kTraceEnergyChange,
-  kEquilibrationEnergyChange,
-  kExchangeEnergyChange,
-  kExchangeFallbackEnergy,
-  kCouplingCounters,                      // the coupling's budget counters
+  kDragEnergyChange = kBcImpulse + 3,     // the gas's energy diagnostics, IceSolver::EnergyDiagnostics order
+  kCouplingCounters = kDragEnergyChange + IceSolver::kEnergyDiagnostics, // the coupling's budget counters
   kNumRankValues = kCouplingCounters + kNumCouplingCounters
 };
 
@@ -243,15 +235,8 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
     const IceBoundaryBudget &f = sim.ice->boundary;
     const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
     for (int k = 0; k < 9; ++k) mine[kBoundaryBudget + k] = values[k];
-    mine[kDragEnergyChange]  = sim.ice->drag_energy_change;
-    mine[kSolidPressureWork] = sim.ice->solid_pressure_work;
-    mine[kGasInterfaceWork]  = sim.ice->gas_interface_work;
-    mine[kAdvectionEnergyChange] = sim.ice->advection_energy_change;
-    mine[kFallbackEnergyChange]  = sim.ice->fallback_energy_change;
-    mine[kTraceEnergyChange]     = sim.ice->trace_energy_change;
-    mine[kEquilibrationEnergyChange] = sim.ice->equilibration_energy_change;
-    mine[kExchangeEnergyChange]      = sim.ice->exchange_energy_change;
-    mine[kExchangeFallbackEnergy]    = sim.ice->exchange_fallback_energy;
+    const auto diagnostics = sim.ice->EnergyDiagnostics();
+    for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) mine[kDragEnergyChange + k] = *diagnostics[k];
   }
   for (int d = 0; d < 3; ++d) {
     mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
@@ -628,15 +613,8 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     f.energy = mine[kBoundaryBudget + 4];
     f.work   = mine[kBoundaryBudget + 5];
     for (int d = 0; d < 3; ++d) f.impulse[d] = mine[kBoundaryBudget + 6 + d];
-    sim.ice->drag_energy_change  = mine[kDragEnergyChange];
-    sim.ice->solid_pressure_work = mine[kSolidPressureWork];
-    sim.ice->gas_interface_work  = mine[kGasInterfaceWork];
-    sim.ice->advection_energy_change = mine[kAdvectionEnergyChange];
-    sim.ice->fallback_energy_change  = mine[kFallbackEnergyChange];
-    sim.ice->trace_energy_change     = mine[kTraceEnergyChange];
-    sim.ice->equilibration_energy_change = mine[kEquilibrationEnergyChange];
-    sim.ice->exchange_energy_change      = mine[kExchangeEnergyChange];
-    sim.ice->exchange_fallback_energy    = mine[kExchangeFallbackEnergy];
+    const auto diagnostics = sim.ice->EnergyDiagnostics();
+    for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) *diagnostics[k] = mine[kDragEnergyChange + k];
   }
   for (int d = 0; d < 3; ++d) {
     sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];

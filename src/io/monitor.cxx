@@ -203,15 +203,8 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   local[kOpen + 4]      = f.energy;
   local[kOpen + 5]      = f.work;
   local[kRemovedMass]   = sim.diag.removed_mass;
-  local[kDrag]          = sim.ice->drag_energy_change;
-  local[kPressureWork]  = sim.ice->solid_pressure_work;
-  local[kInterfaceWork] = sim.ice->gas_interface_work;
-  local[kAdvection]     = sim.ice->advection_energy_change;
-  local[kFallback]      = sim.ice->fallback_energy_change;
-  local[kTrace]         = sim.ice->trace_energy_change;
-  local[kEquilibration] = sim.ice->equilibration_energy_change;
-  local[kExchange]      = sim.ice->exchange_energy_change;
-  local[kExchangeFallback] = sim.ice->exchange_fallback_energy;
+  const auto diagnostics = sim.ice->EnergyDiagnostics(); // kDrag .. kExchangeFallback, in its order
+  for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) local[kDrag + k] = *diagnostics[k];
   if (sim.coupling)
     for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
