@@ -72,6 +72,19 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, Petsc
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// One linear solve A dP = rhs with the given KSP (event ICE_PSolve).
+static PetscErrorCode SolvePressure(IceSolver &ice, KSP ksp, KSPConvergedReason *reason, PetscInt *its)
+{
+  PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(ice.ev_p_solve, 0, 0, 0, 0));
+  PetscCall(KSPSetOperators(ksp, ice.A, ice.A));
+  PetscCall(KSPSolve(ksp, ice.rhs, ice.dp));
+  PetscCall(KSPGetConvergedReason(ksp, reason));
+  PetscCall(KSPGetIterationNumber(ksp, its));
+  PetscCall(PetscLogEventEnd(ice.ev_p_solve, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
 {
   PetscScalar   *a;
@@ -140,12 +153,7 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
     KSP                ksp = use_jacobi ? ice.ksp_jacobi : ice.ksp;
     KSPConvergedReason reason;
     PetscInt           its;
-    PetscCall(PetscLogEventBegin(ice.ev_p_solve, 0, 0, 0, 0));
-    PetscCall(KSPSetOperators(ksp, ice.A, ice.A));
-    PetscCall(KSPSolve(ksp, ice.rhs, ice.dp));
-    PetscCall(KSPGetConvergedReason(ksp, &reason));
-    PetscCall(KSPGetIterationNumber(ksp, &its));
-    PetscCall(PetscLogEventEnd(ice.ev_p_solve, 0, 0, 0, 0));
+    PetscCall(SolvePressure(ice, ksp, &reason, &its));
     if (use_jacobi && reason <= 0) {
       // Jacobi did not make it (it should not at this dominance): the step goes to the KSP's own
       // preconditioner, rebuilt now
@@ -157,12 +165,7 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
       PetscCall(KSPSetReusePreconditioner(ksp, PETSC_FALSE));
       ice.pc_built_step = ice.step;
       ice.pc_setups += 1;
-      PetscCall(PetscLogEventBegin(ice.ev_p_solve, 0, 0, 0, 0));
-      PetscCall(KSPSetOperators(ksp, ice.A, ice.A));
-      PetscCall(KSPSolve(ksp, ice.rhs, ice.dp));
-      PetscCall(PetscLogEventEnd(ice.ev_p_solve, 0, 0, 0, 0));
-      PetscCall(KSPGetConvergedReason(ksp, &reason));
-      PetscCall(KSPGetIterationNumber(ksp, &its));
+      PetscCall(SolvePressure(ice, ksp, &reason, &its));
     }
     if (use_jacobi) ice.jacobi_solves += 1;
     PetscCheck(reason > 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the pressure solve (-ice_pressure_ksp_type, -ice_pressure_pc_type) did not converge: %s after %" PetscInt_FMT " iterations", ice.step, KSPConvergedReasons[reason], its);
