@@ -20,7 +20,8 @@
 //   face velocities -> pressure -> pressure to the
 //   particles -> P2G(f, with sigma + (p - p_ref) I) -> grid update -> the solids' nodal velocity to
 //   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> G2P ->
-//   exchange heat to the particles -> stress -> migrate -> heat conduction -> gas advection
+//   exchange heat to the particles -> the gases pay the pressure's work on the solids -> stress ->
+//   migrate -> heat conduction -> gas advection
 //
 // Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
 // src/coupling/.
@@ -114,6 +115,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
   } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
   PetscCall(CouplingHeatToParticles(sim));
+  PetscCall(CouplingChargePressureWork(sim));
   PetscCall(UpdateStress(sim));
   PetscCall(MigrateParticles(sim));
   PetscCall(ConductHeat(sim));

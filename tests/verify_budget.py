@@ -17,8 +17,8 @@ on failure. ctest calls them (tests/CMakeLists.txt, block 4e).
              A = 1 kg/(m^2 s)): the mass budget closes to round-off (what burns leaves the particles
              and enters the gas), the chemical energy is Q times the burnt mass, momentum stays at
              round-off of p0 L t (symmetric); the heat that the cells give the solids arrives at the
-             particles (1e-6: the mass that burns between the projection and the particle update); the energy budget's residual is printed against the chemical energy
-             released, not asserted (the burnout subcommand bounds it on the whole burn)
+             particles (1e-6: the mass that burns between the projection and the particle update); the
+             energy budget's residual within --energy-tol (1e-3) of the chemical energy released
   burnout    the burning block's deck as written (tests/decks/burning_block.opts, Simple Burn's
              default rate: the charge burns out by about 0.18 ms) to its final time on --ranks:
              every particle burns out (none left, the whole charge counted as burnt), the mass budget
@@ -27,11 +27,13 @@ on failure. ctest calls them (tests/CMakeLists.txt, block 4e).
              be E within --end-tol (1 %, the issue's bound); from there on the closed box's gas
              conserves its total energy to round-off (verify_ice.py conservation), so it comes to
              rest at T = E / (M c_v) and p = (gamma - 1) E / V, which are printed with the kinetic
-             energy still in it
+             energy still in it; the energy budget's residual within --energy-tol (5e-3) of the
+             chemical energy released
   exploding  the main job's short form (exploding_cylinder2d at 40^2 cells, to its final time 180 us:
              about 10 s a run) on 1 and 2 ranks: every budget term and error the same on both (to
              --tol of the budget's largest term), the mass budget closed on each, the momentum the
-             cells give the solids received by the nodes (1e-8); the energy and
+             cells give the solids received by the nodes (1e-8), the energy budget's residual
+             within --energy-tol (1 %, the issue's bound) of the chemical energy released; the energy and
              momentum residuals are printed with their parts: what the gas step does not conserve
              (-p dV fallbacks, traces, the pressure source's work on the solids' cells, the exchange
              with the drag's dropped heat, the equilibration, the advection) and the coupling's
@@ -75,6 +77,8 @@ def transfers(s):
         "sources: -p dV fallbacks": e["fallback_energy_change"],
         "sources: traces accelerated without work": e["trace_energy_change"],
         "sources: pressure work on the solids' cells (-theta_s grad p)": e["solid_pressure_work"],
+        "particles: work of the (p - p_ref) I in their stress": e["ambient_stress_work"],
+        "the gases paid for the two (pressure_work.cxx)": -e["pressure_work_charged"],
         "gas face work booked on one side only": e["gas_interface_work"],
         "equilibration": e["equilibration_energy_change"],
         "exchange": e["exchange_energy_change"],
@@ -90,10 +94,10 @@ def transfers(s):
         print(f"    {name:62s} {value:+13.6g} {value / scale:+.4f}")
     print(f"    (of the exchange: the drag's kinetic energy not given back as heat {e['drag_energy_change']:+.6g}, its temperature-form fallbacks"
           f" {e['exchange_fallback_energy']:+.6g})")
-    own = e["particles_kinetic"] + e["particles_internal"] + e["burnt_particles"] + e["removed_particles"] - e["kinetic_to_nodes"] - e["external_work"]
-    print(f"    (the rest: the particles' kinetic energy + stress work beyond the gas's increments at the nodes {own:+.6g}, the work of the"
-          f" gas pressure they carry in their stress, sigma + (p - p_ref) I, and MPM's own remainder; burning took {e['burnt_particles']:.6g}"
-          f" of it to no term of the gas, which receives dm u^2/2 at the cell's velocity)")
+    own = e["particles_kinetic"] + e["particles_internal"] + e["burnt_particles"] + e["removed_particles"] - e["kinetic_to_nodes"] - e["external_work"] - e["ambient_stress_work"]
+    print(f"    (of the pressure work: no gas in its cell could pay {e['pressure_work_held']:+.6g})")
+    print(f"    (the rest: the particles' kinetic energy + stress work beyond the gas's increments at the nodes and the (p - p_ref) I work {own:+.6g},"
+          f" MPM's own remainder; burning took {e['burnt_particles']:.6g} of it to no term of the gas, which receives dm u^2/2 at the cell's velocity)")
     print(f"  heat to the solids: cells gave {e['heat_to_solid_cells']:.6g} J, particles received {e['heat_to_particles']:.6g} J;"
           f" kinetic energy: cells {e['kinetic_to_solid_cells']:.6g} J, nodes {e['kinetic_to_nodes']:.6g} J;"
           f" momentum: cells gave {p['to_solid_cells']}, nodes received {p['to_nodes']}")
@@ -158,8 +162,9 @@ def burn(args):
     scale = 1e5 * 0.01 * s["final_time"]  # the impulse of 1 atm on the 1 cm block over the run (symmetric: momentum 0)
     residual = np.abs(np.array(s["budget"]["momentum"]["residual"], float)).max()
     check("max |momentum budget residual| / (p0 L t)", residual / scale, 1e-9, failures)
-    print(f"  (not asserted, issue 23) energy budget residual: {e['residual']:+.6g} J = {e['error_of_chemical']:+.4f} of the chemical energy released"
-          f" ({e['error']:+.3e} of the largest term)")
+    # the gases pay the pressure's work on the block (pressure_work.cxx): without that the residual is
+    # the work of the gas compressing the block; what is left is MPM's own (measured 3e-4)
+    check("|energy budget residual| / chemical energy released", abs(e["error_of_chemical"]), args.energy_tol, failures)
     finish(f"budget burn[{args.ranks} rank(s)]", failures)
 
 
@@ -193,6 +198,10 @@ def burnout(args):
     print(f"  at rest: T = {gas_energy / (mass * cv):.6g} K (exact {energy_end / (mass * cv):.6g}), p = {(gamma - 1) * gas_energy / volume:.6g} Pa"
           f" (exact {(gamma - 1) * energy_end / volume:.6g}); now: mean T {e['gas_internal'] / (mass * cv):.6g} K, mean p {(gamma - 1) * e['gas_internal'] / volume:.6g} Pa")
     check("|gas energy - end state's| / end state's (T and p at rest)", abs(gas_energy - energy_end) / energy_end, args.end_tol, failures)
+    # burnt out, all the energy is the gas's: the residual is the end state's error seen from the budget
+    # (measured 7.5e-4 of the chemical energy on 1 rank, 4.0e-3 on 2, whose remnants burn out in another
+    # order; 8.9e-3 on 1 rank if the gases do not pay the pressure's work, -coupling_charge_pressure_work 0)
+    check("|energy budget residual| / chemical energy released", abs(e["error_of_chemical"]), args.energy_tol, failures)
     finish(f"budget burnout[{args.ranks} rank(s)]", failures)
 
 
@@ -209,6 +218,10 @@ def exploding(args):
         runs.append((s, monitor(out)))
         check(f"{ranks} rank(s): max |mass budget error| over the run", float(np.abs(runs[-1][1]["mass_budget_error"]).max()), args.mass_tol, failures)
         check(f"{ranks} rank(s): summary energy_balance_error = the energy budget's", abs(s["energy_balance_error"] - s["budget"]["energy"]["error"]), 0.0, failures)
+        # issue 23's bound for the exploding scenes: the whole system's energy within 1 % of the
+        # chemical energy released (measured +0.47 % at 40 x 40; +15.6 % if the gases do not pay the
+        # pressure's work on the solids, -coupling_charge_pressure_work 0)
+        check(f"{ranks} rank(s): |energy budget residual| / chemical energy released", abs(s["budget"]["energy"]["error_of_chemical"]), args.energy_tol, failures)
         p = s["budget"]["momentum"]
         given, received = np.array(p["to_solid_cells"], float), np.array(p["to_nodes"], float)
         check(f"{ranks} rank(s): max |momentum the nodes received - momentum the cells gave| / max |given| (conservative transfer)",
@@ -252,11 +265,13 @@ def main():
     b.add_argument("--rate", type=float, default=1.0, help="Simple Burn A (kg/(m^2 s)), the slow burn of verify_coupling.py burn")
     b.add_argument("--final-time", type=float, default=1e-4)
     b.add_argument("--tol", type=float, default=1e-12)
+    b.add_argument("--energy-tol", type=float, default=1e-3)
     b.add_argument("--ranks", type=int, default=1)
     b.add_argument("--extra", default="")
     bo = sub.add_parser("burnout")
     bo.add_argument("--tol", type=float, default=1e-12)
     bo.add_argument("--end-tol", type=float, default=1e-2)
+    bo.add_argument("--energy-tol", type=float, default=5e-3)
     bo.add_argument("--ranks", type=int, default=1)
     bo.add_argument("--extra", default="")
     e = sub.add_parser("exploding")
@@ -264,6 +279,7 @@ def main():
     e.add_argument("--final-time", type=float, default=1.8e-4)
     e.add_argument("--tol", type=float, default=1e-11)
     e.add_argument("--mass-tol", type=float, default=1e-12)
+    e.add_argument("--energy-tol", type=float, default=1e-2)
     e.add_argument("--extra", default="")
     args = p.parse_args()
     {"gas_open": gas_open, "burn": burn, "burnout": burnout, "exploding": exploding}[args.cmd](args)

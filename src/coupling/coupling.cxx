@@ -45,6 +45,7 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
   PetscOptionsBegin(sim.comm, "", "Gas-solid coupling", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases of a cell pay the work their pressure does on the solids there (total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
   c->solid_of.assign(sim.materials.size(), -1);
   for (size_t m = 0; m < sim.materials.size(); ++m) {
@@ -421,6 +422,7 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(PetscLogEventRegister("Cpl_SolidVelocity", id, &c.ev_solid_velocity));
   PetscCall(PetscLogEventRegister("Cpl_IncrementsToNode", id, &c.ev_increments));
   PetscCall(PetscLogEventRegister("Cpl_HeatToParticles", id, &c.ev_heat));
+  PetscCall(PetscLogEventRegister("Cpl_PressureWork", id, &c.ev_work));
   PetscCheck(!sim.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
@@ -453,6 +455,12 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(IceMakeRoomForSolids(ice, fraction));
   PetscCall(CouplingBurnSetUp(sim));
+  if (c.charge_pressure_work) {
+    ice.solid_work.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2], 0);
+    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 1, &c.da_work));
+    PetscCall(DMCreateGlobalVector(c.da_work, &c.work_global));
+    PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -30,6 +30,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes 
 PetscErrorCode CouplingSolidVelocity(Simulation &sim);       // nodal v* after the MPM update -> cells
 PetscErrorCode CouplingIncrementsToNodes(Simulation &sim);   // pressure force + exchange -> nodes
 PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat -> particles
+PetscErrorCode CouplingChargePressureWork(Simulation &sim);  // the gas pays the work its pressure did on the solids
 // Burning (burn.cxx): the reactants' models and products; the mass, momentum and energy that burn
 // in each cell (after the equilibration); the particles' share of it (right after, at the positions
 // the cells were projected from, so that the particles lose exactly what the gas gains).
@@ -65,6 +66,9 @@ enum CouplingCounter : int {
   kMomentumToNodes = kMomentumToSolidCells + 3, // 3 values
   kKineticToSolidCells = kMomentumToNodes + 3,
   kKineticToNodes,
+  kAmbientStressWork,   // the work of the (p - p_ref) I the particles carry in their stress (pressure_work.cxx)
+  kPressureWorkCharged, // the work of the gas pressure on the solids that the gases paid (pressure_work.cxx)
+  kPressureWorkHeld,    // of that work, what no gas in its cell could pay (a cell without gas, or a cold gas)
   kNumCouplingCounters
 };
 PetscReal *CouplingCounters(Simulation &sim); // kNumCouplingCounters values

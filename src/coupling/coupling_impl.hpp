@@ -36,8 +36,13 @@ struct Coupling {
   Vec                                     phi_global = nullptr, phi_local = nullptr;
   DM                                      da_source = nullptr; // cells: the burn sources, ghosts added to their owners
   Vec                                     source_global = nullptr, source_local = nullptr;
+  // The work of the gas pressure on the solids (pressure_work.cxx): charged to the gases or not,
+  // and the nodes that gather the particles' share of it.
+  PetscBool                               charge_pressure_work = PETSC_TRUE;
+  DM                                      da_work = nullptr;
+  Vec                                     work_global = nullptr, work_local = nullptr;
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
-  PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0;
+  PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0, ev_work = 0;
   ~Coupling()
   {
     VecDestroy(&mass_global);
@@ -52,6 +57,9 @@ struct Coupling {
     VecDestroy(&source_global);
     VecDestroy(&source_local);
     DMDestroy(&da_source);
+    VecDestroy(&work_global);
+    VecDestroy(&work_local);
+    DMDestroy(&da_work);
   }
 };
 

@@ -172,6 +172,10 @@ struct IceSolver {
   // that come with it. Filled by the coupling after the equilibration; empty when nothing burns.
   std::vector<PetscReal> mass_source, momentum_source, energy_source;
   bool                   has_mass_source = false;
+  // Per local cell (when the coupling asks for it, else empty): the kinetic energy that this step's
+  // pressure source -theta_s grad p gives the cell's solid materials (J), which the gases pay
+  // (src/coupling/pressure_work.cxx). Filled by IceSources.
+  std::vector<PetscReal> solid_work;
 
   // Step state
   PetscReal dt = 0, time = 0;

@@ -178,6 +178,7 @@ struct Budget {
   PetscReal equilibration_energy_change = 0;                      // and the equilibration (not in the sums)
   PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0; // and the exchange: all of it, its fallbacks' part (the drag's above)
   PetscReal burnt_particle_energy = 0;   // the kinetic energy and stress work burning took from the particles (not in the sums)
+  PetscReal ambient_stress_work = 0, pressure_work_charged = 0, pressure_work_held = 0; // the gas pressure's work on the solids: the particles' (p - p_ref) I part, what the gases paid of all of it, what they could not (not in the sums)
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
   PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
   PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;  // relative to the largest term
@@ -246,6 +247,9 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.burnt_particle_energy   = counter[kBurntParticleEnergy];
   b.kinetic_to_solid_cells  = counter[kKineticToSolidCells];
   b.kinetic_to_nodes        = counter[kKineticToNodes];
+  b.ambient_stress_work     = counter[kAmbientStressWork];
+  b.pressure_work_charged   = counter[kPressureWorkCharged];
+  b.pressure_work_held      = counter[kPressureWorkHeld];
   for (int d = 0; d < 3; ++d) {
     b.momentum_to_solid_cells[d] = counter[kMomentumToSolidCells + d];
     b.momentum_to_nodes[d]       = counter[kMomentumToNodes + d];
@@ -339,7 +343,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                         ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                         ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy");
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,ambient_stress_work,pressure_work_charged,pressure_work_held");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     std::fprintf(csv, "\n");
   }
@@ -405,6 +409,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
       std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.ambient_stress_work, (double)b.pressure_work_charged, (double)b.pressure_work_held);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
     std::fprintf(csv, "\n");
@@ -540,7 +545,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
     s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
-    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"burnt_particles\": " << b.burnt_particle_energy << "}\n";
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"burnt_particles\": " << b.burnt_particle_energy;
+    s << ", \"ambient_stress_work\": " << b.ambient_stress_work << ", \"pressure_work_charged\": " << b.pressure_work_charged << ", \"pressure_work_held\": " << b.pressure_work_held << "}\n";
     s << "  },\n";
   }
   if (!rank_phase_seconds.empty()) { // the phases' seconds on each rank, and the stepping wall time
