@@ -19,8 +19,8 @@
 //   P2G(m, mv) -> solids to cells -> equilibration -> burning (gas sources, particle masses) ->
 //   face velocities -> pressure -> pressure to the
 //   particles -> P2G(f, with sigma + (p - p_ref) I) -> grid update -> the solids' nodal velocity to
-//   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> G2P ->
-//   exchange heat to the particles -> the gases pay the pressure's work on the solids -> stress ->
+//   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> the
+//   gases pay the pressure's work on the solids -> G2P -> exchange heat to the particles -> stress ->
 //   migrate -> heat conduction -> gas advection
 //
 // Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
@@ -109,13 +109,13 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceCellExchange(ice));
   PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
+  PetscCall(CouplingChargePressureWork(sim));
   if (sim.scheme == StepScheme::MUSL) {
     PetscCall(RemapMomentum(sim));
     PetscCall(GridVelocityFromMomentum(sim));
     PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
   } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
   PetscCall(CouplingHeatToParticles(sim));
-  PetscCall(CouplingChargePressureWork(sim));
   PetscCall(UpdateStress(sim));
   PetscCall(MigrateParticles(sim));
   PetscCall(ConductHeat(sim));

@@ -336,7 +336,12 @@ def piston(args):
         face = y.min() - dy / 4  # particles sit dy/4 inside the block's face (2 per cell)
         k = int(face / dy)
         force_t.append(tt)
-        force.append((P[k - 1] - P[int((y.max() + dy / 4) / dy) + 1]) * width)  # below minus above the piston, N per metre
+        # below minus above the piston, N per metre: the gas two cells from the cells that hold the
+        # faces. The projection spreads the piston's mass one cell beyond its face (the nodes of the
+        # face cell carry it into the next cell), and that cell's pressure is a blend between the gas
+        # and the piston (measured: 170 kPa there against 200 kPa in the gas beyond at 4 ms); with
+        # it the ratio below read 1.23
+        force.append((P[k - 2] - P[int((y.max() + dy / 4) / dy) + 2]) * width)
         if tt < 2 * h0 / c0:  # before the start-up wave has come back from the wall once
             continue
         lo = p0 * (h0 / (h0 - v_p * tt)) ** gamma
@@ -359,7 +364,9 @@ def piston(args):
     print(f"  piston velocity change {dv:+.3e} m/s ({dv / v_p:+.2e} of v_p); momentum change {mom[-1] - mom[0]:+.4f} kg m/s per metre,"
           f" gas force integral (below minus above the piston) {impulse:+.4f} N s per metre")
     check("|piston velocity change| / v_p", abs(dv) / v_p, 1e-3, failures)
-    print(f"  (not asserted, see the report) piston momentum budget: change / gas force integral = {(mom[-1] - mom[0]) / impulse:+.3f}")
+    # issue 23 item 6: the momentum the piston receives is what the gas pushes on its faces (measured
+    # 1.006 with the gas two cells out, 1.0006 three cells out)
+    check("|piston momentum change / gas force integral - 1|", abs((mom[-1] - mom[0]) / impulse - 1), 0.02, failures)
     finish("piston", failures)
 
 

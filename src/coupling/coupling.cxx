@@ -249,6 +249,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   ParticleKernel kernel{sim, c, a, true};
   PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
   PetscCall(VecRestoreArrayRead(c.inc_local, &a));
+  PetscCall(CouplingAmbientImpulse(sim)); // its work is the gases' to pay (pressure_work.cxx)
   PetscCall(PetscLogEventEnd(c.ev_pressure, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -456,7 +457,13 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(IceMakeRoomForSolids(ice, fraction));
   PetscCall(CouplingBurnSetUp(sim));
   if (c.charge_pressure_work) {
-    ice.solid_work.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2], 0);
+    ice.solid_pressure_dv.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2] * c.nsolid * 3, 0);
+    PetscCall(DMDACreateCompatibleDMDA(ice.da, c.nsolid * 3, &c.da_dv));
+    PetscCall(DMCreateGlobalVector(c.da_dv, &c.dv_global));
+    PetscCall(DMCreateLocalVector(c.da_dv, &c.dv_local));
+    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nfield * sim.grid.dim, &c.da_impulse));
+    PetscCall(DMCreateGlobalVector(c.da_impulse, &c.impulse_global));
+    PetscCall(DMCreateLocalVector(c.da_impulse, &c.impulse_local));
     PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 1, &c.da_work));
     PetscCall(DMCreateGlobalVector(c.da_work, &c.work_global));
     PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));

@@ -39,7 +39,11 @@ struct Coupling {
   // The work of the gas pressure on the solids (pressure_work.cxx): charged to the gases or not,
   // and the nodes that gather the particles' share of it.
   PetscBool                               charge_pressure_work = PETSC_TRUE;
-  DM                                      da_work = nullptr;
+  DM                                      da_impulse = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
+  Vec                                     impulse_global = nullptr, impulse_local = nullptr;
+  DM                                      da_dv = nullptr;   // cells: ice.solid_pressure_dv with its ghost cells
+  Vec                                     dv_global = nullptr, dv_local = nullptr;
+  DM                                      da_work = nullptr; // nodes: the work of the gas on the solids there
   Vec                                     work_global = nullptr, work_local = nullptr;
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
   PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0, ev_work = 0;
@@ -60,9 +64,19 @@ struct Coupling {
     VecDestroy(&work_global);
     VecDestroy(&work_local);
     DMDestroy(&da_work);
+    VecDestroy(&dv_global);
+    VecDestroy(&dv_local);
+    DMDestroy(&da_dv);
+    VecDestroy(&impulse_global);
+    VecDestroy(&impulse_local);
+    DMDestroy(&da_impulse);
   }
 };
 
+
+// The impulse of the (p - p_ref) I the particles carry, per node and velocity field, for the work the
+// gases pay (pressure_work.cxx; after the pressure reaches the particles, before P2G(f) uses it).
+PetscErrorCode CouplingAmbientImpulse(Simulation &sim);
 
 // Weight of node (i, j, k) for a cell it bounds: 1/2 per direction, 1 on a domain face.
 inline PetscReal NodeWeight(const IceSolver &ice, const PetscInt node[3])

@@ -1,18 +1,20 @@
 // The work of the gas pressure on the solids, paid by the gases (ice.md 2.3).
 //
 // The gas pressure reaches a solid two ways (coupling.hpp): the cell momentum source -theta_s grad p,
-// and the (p - p_ref) I that the particles' internal force adds to their stress. Both give the solid
-// energy: the first kinetic energy in the cells (IceSources keeps it per cell, ice.solid_work), the
-// second the power -V (p - p_ref) tr L of that stress on the particle's motion. Inside a solid the two
-// cancel; what is left is the work of the pressure on the solid's surface. The gases' face work only
-// moves energy between gas cells, so without a charge the solids gain this work from nothing (the
-// main job's energy budget +32 % of the chemical energy released). Here each cell's gases pay it,
-// shared by volume fraction, from their Lagrangian internal energy before the advection.
+// which reaches the nodes with the cells' increments, and the (p - p_ref) I the particles' internal
+// force adds to their stress. Inside a solid the two impulses cancel; what is left at a node is the
+// pressure on the solid's surface there. The gases' face work only moves energy between gas cells,
+// so without a charge the solids gain the work of that surface pressure from nothing (the main job's
+// energy budget +32 % of the chemical energy released). Here the work is taken where it is done:
+// per node and velocity field, the sum of the two impulses times the node's mean velocity over the
+// step, (v_old + v_new)/2. Each node's work is then paid by the gases of the cells around it, shared
+// by their volume fractions, from their Lagrangian internal energy before the advection. (Taken per
+// cell instead, the two parts do not cancel inside a solid: a heavy piston's cells held +705 J that
+// no gas could pay and handed -682 J to a column of air that holds 66 J.)
 //
-// The particles' share goes back the way the pressure came: particle -> nodes (N_ip) -> the cells
-// around each node (the node's share of each, 1/2^dim inside; the transpose of the nodal pressure
-// mean). A cell without gas above the trace fraction, or whose gases would cool below half their
-// temperature, cannot pay: that part is counted (kPressureWorkHeld) and the budget shows it.
+// A node whose cells hold no gas above the trace fraction, or whose gases would cool below half
+// their temperature, cannot be paid for: that part is counted (kPressureWorkHeld) and the budget
+// shows it.
 #include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
@@ -20,40 +22,42 @@
 namespace burst {
 
 namespace {
-// Particles -> nodes: the work W_p = -dt V_p (p_p - p_ref) tr L_p of the ambient stress, V_p the
-// volume at the start of the step (the one the internal force used).
-struct AmbientWorkKernel {
+// Particles -> nodes: the impulse -dt V_p (p_p - p_ref) grad N_ip of the ambient stress, as P2G(f)
+// will add it to the internal force (same positions, volumes and weights), per velocity field.
+struct AmbientImpulseKernel {
   Simulation  &sim;
+  Coupling    &c;
   PetscScalar *out;
-  PetscReal    total = 0; // J, the work of all the particles
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
     const Grid          &g = sim.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
-    const PetscReal     *x, *hw, *F, *L, *vol, *ambient;
+    const PetscReal     *x, *hw, *F, *vol, *ambient;
+    const PetscInt      *mat;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
-    PetscCall(fields.Get(field::L, &L));
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::ambient_pressure, &ambient));
+    PetscCall(fields.Get(field::material, &mat));
     const PetscReal dt = sim.dt;
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       if (ambient[p] == 0) continue;
-      const PetscReal *l = L + 9 * p;
-      // det(I + dt L): the volume ratio of the step (g2p.cxx)
-      const PetscReal a00 = 1 + dt * l[0], a01 = dt * l[1], a02 = dt * l[2], a10 = dt * l[3], a11 = 1 + dt * l[4], a12 = dt * l[5], a20 = dt * l[6], a21 = dt * l[7], a22 = 1 + dt * l[8];
-      const PetscReal ratio = a00 * (a11 * a22 - a12 * a21) - a01 * (a10 * a22 - a12 * a20) + a02 * (a10 * a21 - a11 * a20);
-      const PetscReal work  = -dt * vol[p] / ratio * ambient[p] * (l[0] + l[4] + l[8]);
-      total += work;
+      const PetscInt s = c.solid_of[mat[p]];
+      if (s < 0) continue;
+      const PetscReal scale = -dt * vol[p] * ambient[p];
+      PetscScalar    *field = out + c.field_of[s] * DIM;
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) { out[index(i, j, k)] += N * work; });
+      ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal, const PetscReal dN[]) {
+        PetscScalar *node = field + index(i, j, k) * c.nfield * DIM;
+        for (int d = 0; d < DIM; ++d) node[d] += scale * dN[d];
+      });
     }
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -61,51 +65,123 @@ struct AmbientWorkKernel {
 };
 } // namespace
 
+PetscErrorCode CouplingAmbientImpulse(Simulation &sim)
+{
+  Coupling    &c = *sim.coupling;
+  PetscScalar *nodes;
+  PetscFunctionBeginUser;
+  if (!c.charge_pressure_work) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(c.ev_work, 0, 0, 0, 0));
+  PetscCall(VecZeroEntries(c.impulse_local));
+  PetscCall(VecGetArray(c.impulse_local, &nodes));
+  AmbientImpulseKernel kernel{sim, c, nodes};
+  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(VecRestoreArray(c.impulse_local, &nodes));
+  PetscCall(VecZeroEntries(c.impulse_global));
+  PetscCall(DMLocalToGlobal(c.da_impulse, c.impulse_local, ADD_VALUES, c.impulse_global)); // owned nodes: complete
+  PetscCall(PetscLogEventEnd(c.ev_work, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingChargePressureWork(Simulation &sim)
 {
   Coupling  &c   = *sim.coupling;
   IceSolver &ice = *sim.ice;
+  Grid      &g   = sim.grid;
   PetscFunctionBeginUser;
   if (!c.charge_pressure_work) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_work, 0, 0, 0, 0));
-  PetscScalar *nodes;
-  PetscCall(VecZeroEntries(c.work_local));
-  PetscCall(VecGetArray(c.work_local, &nodes));
-  AmbientWorkKernel kernel{sim, nodes};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
-  PetscCall(VecRestoreArray(c.work_local, &nodes));
-  c.counters[kAmbientStressWork] += kernel.total;
-  PetscCall(VecZeroEntries(c.work_global));
-  PetscCall(DMLocalToGlobal(c.da_work, c.work_local, ADD_VALUES, c.work_global));
+  const PetscInt       dim = ice.dim, vdof = g.num_velocity_fields * 2 * dim, mstride = 2 + dim, ns = c.nsolid;
+  const LocalNodeIndex index(g);
+  PetscInt             xs[3], xm[3];
+  const PetscScalar   *impulse, *vel, *solid_mass;
+  PetscScalar         *work, *dv;
+  PetscReal            ambient_work = 0;
+  // the solids' pressure velocity changes of the owned cells (IceSources) -> with the ghost cells
+  PetscCall(VecGetArray(c.dv_global, &dv));
+  PetscInt o = 0;
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i)
+        for (PetscInt q = 0; q < ns * 3; ++q) dv[o++] = ice.solid_pressure_dv[ice.LocalIndex(i, j, k) * ns * 3 + q];
+  PetscCall(VecRestoreArray(c.dv_global, &dv));
+  PetscCall(DMGlobalToLocal(c.da_dv, c.dv_global, INSERT_VALUES, c.dv_local));
+  const PetscScalar *dv_cells;
+  // the work at each owned node: (the cells' pressure impulse + the particles' ambient impulse) . (v_old + v_new)/2
+  PetscCall(DMDAGetCorners(c.da_work, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(VecGetArrayRead(c.dv_local, &dv_cells));
+  PetscCall(VecGetArrayRead(c.impulse_global, &impulse));
+  PetscCall(VecGetArrayRead(g.velocity, &vel));
+  PetscCall(VecGetArrayRead(c.mass_local, &solid_mass));
+  PetscCall(VecGetArray(c.work_global, &work));
+  PetscInt l = 0;
+  for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
+    for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
+      for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++l) {
+        PetscReal       J[2][3]     = {{0, 0, 0}, {0, 0, 0}}; // the cells' impulse per field
+        const PetscInt  node_ijk[3] = {i, j, k};
+        const PetscReal w_node      = NodeWeight(ice, node_ijk);
+        for (PetscInt s = 0; s < ns; ++s) {
+          const PetscReal ms = solid_mass[index(i, j, k) * c.mass_stride + s * mstride];
+          if (!(ms > 0)) continue;
+          ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
+            if (!inside) return;
+            for (PetscInt d = 0; d < dim; ++d) J[c.field_of[s]][d] += ms * w_node * dv_cells[(idx * ns + s) * 3 + d];
+          });
+        }
+        PetscReal w = 0;
+        for (PetscInt f = 0; f < c.nfield; ++f) {
+          const PetscScalar *v = vel + l * vdof + f * 2 * dim; // v_old, v_new
+          for (PetscInt d = 0; d < dim; ++d) {
+            const PetscReal v_mid = 0.5 * (v[d] + v[dim + d]), amb = impulse[l * c.nfield * dim + f * dim + d];
+            w += (J[f][d] + amb) * v_mid;
+            ambient_work += amb * v_mid;
+          }
+        }
+        work[l] = w;
+      }
+  PetscCall(VecRestoreArray(c.work_global, &work));
+  PetscCall(VecRestoreArrayRead(c.mass_local, &solid_mass));
+  PetscCall(VecRestoreArrayRead(g.velocity, &vel));
+  PetscCall(VecRestoreArrayRead(c.impulse_global, &impulse));
+  PetscCall(VecRestoreArrayRead(c.dv_local, &dv_cells));
   PetscCall(DMGlobalToLocal(c.da_work, c.work_global, INSERT_VALUES, c.work_local));
 
-  const LocalNodeIndex index(sim.grid);
-  const PetscReal      V = ice.CellVolume();
-  const PetscScalar   *node_work;
-  PetscScalar         *a;
-  PetscReal            charged = 0, held = 0;
+  // each owned cell pays its share of the work of its corner nodes: a node's work is shared by the
+  // cells around it in proportion to the gas they hold
+  const PetscReal    V = ice.CellVolume();
+  const PetscScalar *node_work;
+  PetscScalar       *cells;
+  PetscReal          charged = 0, held = 0;
+  auto gas_fraction = [&](const PetscScalar *cell) {
+    PetscReal theta = 0;
+    for (PetscInt m = 0; m < ice.ngas; ++m)
+      if (cell[ice.Offset(m, icef::theta)] >= ice.trace_fraction) theta += cell[ice.Offset(m, icef::theta)];
+    return theta;
+  };
   PetscCall(VecGetArrayRead(c.work_local, &node_work));
-  PetscCall(IceGetLocalArray(ice, &a));
+  PetscCall(IceGetLocalArray(ice, &cells));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
-        const PetscInt idx  = ice.LocalIndex(i, j, k);
-        PetscScalar   *cell = a + idx * ice.stride;
-        // a node's work goes to its cells in the shares NodeWeight gives (1/2^dim inside)
-        PetscReal work = ice.solid_work[idx];
-        ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) { work += w * node_work[index(node[0], node[1], node[2])]; });
-        if (work == 0) continue;
-        PetscReal gas_fraction = 0;
-        for (PetscInt m = 0; m < ice.ngas; ++m)
-          if (cell[ice.Offset(m, icef::theta)] >= ice.trace_fraction) gas_fraction += cell[ice.Offset(m, icef::theta)];
-        if (!(gas_fraction > 0)) {
-          held += work;
-          continue;
-        }
+        PetscScalar    *cell = cells + ice.LocalIndex(i, j, k) * ice.stride;
+        const PetscReal mine = gas_fraction(cell);
+        PetscReal       bill = 0;
+        ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
+          const PetscReal W = node_work[index(node[0], node[1], node[2])];
+          if (W == 0) return;
+          PetscReal around = 0;
+          ForEachCellAroundNode(ice, node[0], node[1], node[2], [&](PetscInt idx, bool inside) {
+            if (inside) around += gas_fraction(cells + idx * ice.stride);
+          });
+          if (around > 0) bill += W * mine / around;
+          else held += w * W; // no gas around the node: each of its cells counts its weight's share
+        });
+        if (bill == 0) continue;
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           const PetscReal theta = cell[ice.Offset(m, icef::theta)];
           if (theta < ice.trace_fraction) continue;
-          const PetscReal share = work * theta / gas_fraction;
+          const PetscReal share = bill * theta / mine;
           const PetscReal heat  = cell[ice.Offset(m, icef::rho_L)] * V * ice.materials[m].eos->cv; // J/K
           PetscReal      &T_L   = cell[ice.Offset(m, icef::temp_L)];
           const PetscReal paid  = PetscMin(share, 0.5 * T_L * heat); // keeps at least half its temperature
@@ -114,9 +190,10 @@ PetscErrorCode CouplingChargePressureWork(Simulation &sim)
           held += share - paid;
         }
       }
-  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCall(IceRestoreLocalArray(ice, &cells));
   PetscCall(IceUpdateGhosts(ice)); // the advection reads the neighbours' Lagrangian values
   PetscCall(VecRestoreArrayRead(c.work_local, &node_work));
+  c.counters[kAmbientStressWork] += ambient_work;
   c.counters[kPressureWorkCharged] += charged;
   c.counters[kPressureWorkHeld] += held;
   PetscCall(PetscLogEventEnd(c.ev_work, 0, 0, 0, 0));

@@ -172,10 +172,10 @@ struct IceSolver {
   // that come with it. Filled by the coupling after the equilibration; empty when nothing burns.
   std::vector<PetscReal> mass_source, momentum_source, energy_source;
   bool                   has_mass_source = false;
-  // Per local cell (when the coupling asks for it, else empty): the kinetic energy that this step's
-  // pressure source -theta_s grad p gives the cell's solid materials (J), which the gases pay
-  // (src/coupling/pressure_work.cxx). Filled by IceSources.
-  std::vector<PetscReal> solid_work;
+  // Per local cell and solid material (when the coupling asks for it, else empty): the velocity
+  // change du (3 values) that this step's pressure source -dt theta_s grad p gives the solid, whose
+  // work the gases pay (src/coupling/pressure_work.cxx). Filled by IceSources.
+  std::vector<PetscReal> solid_pressure_dv;
 
   // Step state
   PetscReal dt = 0, time = 0;

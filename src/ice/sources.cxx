@@ -74,20 +74,9 @@ PetscErrorCode IceSources(IceSolver &ice)
             grad_q[d]    = (q_face[d][1] - q_face[d][0]) / ice.h[d];
           }
         }
-        if (!ice.solid_work.empty()) {
-          // the kinetic energy the pressure source gives the solids here, M (|u + du|^2 - |u|^2)/2
-          // with M du = -dt theta grad p V (the gases pay it: src/coupling/pressure_work.cxx)
-          PetscReal work = 0;
-          for (PetscInt m = ice.ngas; m < n; ++m) {
-            const PetscReal rho = c[ice.Offset(m, icef::rho)], theta = c[ice.Offset(m, icef::theta)];
-            if (!(rho > 0)) continue;
-            for (PetscInt d = 0; d < dim; ++d) {
-              const PetscReal source = -ice.dt * theta * grad_p[d];
-              work += source * (c[ice.Offset(m, icef::vel + d)] + 0.5 * source / rho);
-            }
-          }
-          ice.solid_work[idx] = work * ice.CellVolume();
-        }
+        if (!ice.solid_pressure_dv.empty()) // the pressure source's velocity change of each solid (its work: src/coupling/pressure_work.cxx)
+          for (PetscInt m = ice.ngas; m < n; ++m)
+            for (PetscInt d = 0; d < 3; ++d) ice.solid_pressure_dv[(idx * (n - ice.ngas) + m - ice.ngas) * 3 + d] = d < dim ? -ice.dt * c[ice.Offset(m, icef::theta)] * grad_p[d] / c[ice.Offset(m, icef::rho)] : 0;
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
           const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
