@@ -9,13 +9,17 @@ Runs the scene with each treatment of failed particles:
   erosion_nt    -MAT_failure_response no_tension, one velocity field;
   conversion    -mpm_convert_failed with -MAT_failure_response no_tension, frictionless contact;
 and writes OUT/failure_study.csv and OUT/failure_study.png (energy balance history and fragments).
---quick runs 80 cells (the suite's smoke test).
+--quick runs 80 cells (the suite's test study_failure_quick) and checks every treatment as
+tests/verify.py grady checks a fragmenting scene: the count within the gross bracket
+[Grady shear / 2, 3 x Grady tension] and |energy balance error| <= 0.02. Exits non-zero when a run
+fails, a --quick check fails, or the CSV or the chart is not written.
 """
 import argparse
 import csv
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 import matplotlib
@@ -26,6 +30,9 @@ import numpy as np  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
+# The bounds of tests/verify.py grady: measured at 80 cells, no length, each treatment 4 fragments against the
+# bracket [2.84, 25.6] (Grady 5.69-8.53), energy balance error -8.5e-3 for each.
+ENERGY_TOL = 0.02
 CASES = [("erosion", ["-{m}_failure_response", "zero_stress"]),
          ("erosion_nt", ["-{m}_failure_response", "no_tension"]),
          ("conversion", ["-{m}_failure_response", "no_tension", "-mpm_convert_failed", "-mpm_contact_type", "friction", "-mpm_contact_friction", "0"])]
@@ -61,7 +68,8 @@ def main():
                 s = json.load(f)
             histories[label] = np.genfromtxt(os.path.join(out, "monitor.csv"), delimiter=",", names=True)
         row = dict(treatment=label, fragments=s["fragment_count"], energy_balance_error=s["energy_balance_error"], failure_energy=s["failure_energy"],
-                   kinetic_energy=s["kinetic_energy"], intact_mass=s["intact_mass"], wall_time_s=s["wall_time_s"])
+                   kinetic_energy=s["kinetic_energy"], intact_mass=s["intact_mass"], wall_time_s=s["wall_time_s"],
+                   grady_shear=s["grady_shear"]["sector"], grady_tension=s["grady_tension"]["sector"])
         rows.append(row)
         print(f"{label:11s}: {row['fragments']:3d} fragments, energy balance error {row['energy_balance_error']:+.2e}, failure energy {row['failure_energy']:.3g} J, "
               f"final kinetic {row['kinetic_energy']:.4g} J, intact mass {row['intact_mass']:.4g} kg, {row['wall_time_s']:.0f} s")
@@ -82,6 +90,22 @@ def main():
     png = os.path.join(args.out, "failure_study.png")
     fig.savefig(png, dpi=130, bbox_inches="tight")
     print("wrote", table, "and", png)
+    failures = [f"{path} not written" for path in (table, png) if not os.path.exists(path) or not os.path.getsize(path)]
+    if args.quick:
+        for r in rows:
+            n, lo, hi, e = r["fragments"], r["grady_shear"], r["grady_tension"], r["energy_balance_error"]
+            ok = 0.5 * lo <= n <= 3 * hi
+            print(f"  {r['treatment']}: {n} fragments within [shear/2, 3 x tension] = [{0.5 * lo:.2f}, {3 * hi:.2f}]: {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{r['treatment']}: {n} fragments")
+            ok = abs(e) <= ENERGY_TOL
+            print(f"  {r['treatment']}: |energy balance error| {abs(e):.2e} <= {ENERGY_TOL:g}: {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{r['treatment']}: energy balance error {e:+.2e}")
+    if failures:
+        print(f"study_failure: FAIL ({'; '.join(failures)})")
+        sys.exit(1)
+    print("study_failure: OK")
 
 
 if __name__ == "__main__":

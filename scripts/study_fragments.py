@@ -13,13 +13,18 @@ cell count, at each number of particles per cell (or exactly the --cases CELLSxP
                            Grady-Hightower band, failure energy and plastic work, the fragment masses
   OUT/fragments_study.png  the count against the cell size per regularisation with the Grady band,
                            the failure energy, and the cumulative fragment-mass distributions
---quick runs 80 cells and 2 particles per cell without regularisation only (the suite's smoke test).
+--quick runs 80 cells and 2 particles per cell without regularisation only (the suite's test
+study_fragments_quick) and checks it as tests/verify.py grady checks a fragmenting scene: the count within
+the gross bracket [Grady shear / 2, 3 x Grady tension] (counts in the softening regime depend on the
+mesh: only a gross mismatch fails) and |energy balance error| <= 0.02. Exits non-zero when a run fails,
+a --quick check fails, or the CSV or the chart is not written.
 """
 import argparse
 import csv
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 import matplotlib
@@ -175,6 +180,33 @@ def main():
     png = os.path.join(args.out, "fragments_study.png")
     plot(rows, args, png)
     print("wrote", table, "and", png)
+    failures = [f"{path} not written" for path in (table, png) if not os.path.exists(path) or not os.path.getsize(path)]
+    if args.quick:
+        failures += quick_checks(rows)
+    if failures:
+        print(f"study_fragments: FAIL ({'; '.join(failures)})")
+        sys.exit(1)
+    print("study_fragments: OK")
+
+
+# The bounds of tests/verify.py grady (a fragmenting scene against Grady-Hightower): measured at 80 cells,
+# 2 per cell, no length: 4 fragments against the bracket [2.84, 25.6] (Grady 5.69-8.53), energy error -8.6e-3.
+ENERGY_TOL = 0.02
+
+
+def quick_checks(rows):
+    failures = []
+    for r in rows:
+        n, lo, hi, e = int(r["fragments"]), float(r["grady_shear"]), float(r["grady_tension"]), float(r["energy_balance_error"])
+        ok = 0.5 * lo <= n <= 3 * hi
+        print(f"  {r['regularization']} {r['cells']} cells: {n} fragments within [shear/2, 3 x tension] = [{0.5 * lo:.2f}, {3 * hi:.2f}]: {'OK' if ok else 'FAIL'}")
+        if not ok:
+            failures.append(f"{r['regularization']} {r['cells']} cells: {n} fragments")
+        ok = abs(e) <= ENERGY_TOL
+        print(f"  {r['regularization']} {r['cells']} cells: |energy balance error| {abs(e):.2e} <= {ENERGY_TOL:g}: {'OK' if ok else 'FAIL'}")
+        if not ok:
+            failures.append(f"{r['regularization']} {r['cells']} cells: energy balance error {e:+.2e}")
+    return failures
 
 
 if __name__ == "__main__":

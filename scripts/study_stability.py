@@ -36,7 +36,10 @@ Writes OUT/stability_cfl.csv, OUT/stability_cfl.png (the map: largest stable CFL
 OUT/energy_histories.png (total energy against time at CFL 0.1, MUSL, linear and cpGIMP).
 --quick: a reduced form of the chosen study (cfl: two methods, two CFL numbers, no histories; noise:
 two interpolators, three amplitudes; fracture: linear and cpGIMP at 1 and 4 per cell), the suite's
-smoke tests."""
+smoke tests.
+Exits non-zero when a cfl run stops for a reason other than the three instability stops (a crash or
+a refused option is not a stability limit), and when --quick's cfl map differs from the recorded map
+doc/figures/stability_cfl.csv (the README's chart) on the methods it covers."""
 import argparse
 import csv
 import glob
@@ -44,6 +47,7 @@ import importlib.util
 import json
 import os
 import subprocess
+import sys
 import tempfile
 
 import h5py
@@ -80,7 +84,7 @@ def study_cfl(a):
     shapes = ["linear"] if a.quick else ["linear", "ugimp", "cpgimp", "bspline2"]
     transfers = ["FLIP", "APIC"] if a.quick else list(TRANSFERS)
     schemes = ["musl"] if a.quick else ["usl", "musl", "usf"]
-    rows = []
+    rows, failures = [], []
     for scheme in schemes:
         for shape in shapes:
             for tr in transfers:
@@ -89,6 +93,8 @@ def study_cfl(a):
                     ok, reason, _ = run(a.burst, ["-mpm_shape_type", shape, "-mpm_scheme", scheme, "-mpm_cfl", str(cfl), *TRANSFERS[tr]])
                     if not ok:
                         why = f"{reason} at CFL {cfl}"
+                        if reason == "other":
+                            failures.append(f"{scheme} {shape} {tr} at CFL {cfl}: burst stopped, not on an instability")
                         break
                     best = cfl
                 rows.append(dict(scheme=scheme, shape=shape, transfer=tr, largest_stable_cfl=best, failure=why))
@@ -115,7 +121,20 @@ def study_cfl(a):
     fig.savefig(png, dpi=110)
     print(f"wrote {png}")
     if a.quick:
-        return
+        # The quick search is the full one's first steps (the same CFL numbers in the same order), so it
+        # must find what the recorded map found, clipped to the CFL numbers it tries.
+        recorded = {(r["scheme"], r["shape"], r["transfer"]): float(r["largest_stable_cfl"]) for r in read_csv(os.path.join(ROOT, "doc/figures/stability_cfl.csv"))}
+        for r in rows:
+            key = (r["scheme"], r["shape"], r["transfer"])
+            if key not in recorded:
+                failures.append(f"{' '.join(key)} not in doc/figures/stability_cfl.csv")
+                continue
+            expect = max([c for c in cfls if c <= recorded[key] + 1e-12], default=0.0)
+            ok = r["largest_stable_cfl"] == expect
+            print(f"  {' '.join(key)}: largest stable CFL {r['largest_stable_cfl']} (recorded map {recorded[key]}, within the CFL numbers tried {expect}) {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{' '.join(key)} largest stable CFL {r['largest_stable_cfl']}, recorded {expect}")
+        return failures
     fig, axes = plt.subplots(1, 2, figsize=(9, 3.5), sharey=True)
     for ax, shape in zip(axes, ["linear", "cpgimp"]):
         for tr in TRANSFERS:
@@ -131,6 +150,7 @@ def study_cfl(a):
     png = os.path.join(a.out, "energy_histories.png")
     fig.savefig(png, dpi=110)
     print(f"wrote {png}")
+    return failures
 
 
 
@@ -465,8 +485,13 @@ def main():
     p.add_argument("--study", default="cfl", choices=[*STUDIES, "all"])
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    failures = []
     for name in (STUDIES if a.study == "all" else [a.study]):
-        STUDIES[name](a)
+        failures += STUDIES[name](a) or []
+    if failures:
+        print(f"study_stability: FAIL ({'; '.join(failures)})")
+        sys.exit(1)
+    print("study_stability: OK")
 
 
 if __name__ == "__main__":

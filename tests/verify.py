@@ -99,7 +99,37 @@ def bar(args):
     finish(f"bar_vibration[{args.shape}]", failures)
 
 
+# The spatial order the manufactured solutions should show (Wallstedt & Guilkey 2008, the axis-aligned
+# solution): the smooth-gradient weights (uGIMP, cpGIMP, quadratic B-spline) converge at second
+# order; linear weights do not converge (the cell-crossing error grows as particles cross faces).
+SMOOTH_SHAPE_ORDER = {"ugimp": 2.0, "cpgimp": 2.0, "bspline2": 2.0}
+# Default margin below the theoretical order: the time error and the pre-asymptotic coarse pair pull
+# the observed finest-pair order off 2 (measured 1.93-2.32 over the registered cases, dt 1e-5 / 2e-5;
+# README Verification), so 0.3 below the theory holds all of them and still fails an order-1 method.
+ORDER_MARGIN = 0.3
+# Linear weights stall: the finest-pair order measured 0.43 (2-D, 8/16/32 cells); a linear run
+# that converged at first order or better would mean the cell-crossing error is no longer seen.
+LINEAR_MAX_ORDER = 1.0
+
+
+def convergence_bounds(args):
+    """The bound every convergence run checks: the one given, or the one its shape's theory implies.
+    A run without any bound would check nothing, so there is always one."""
+    if args.min_order is not None or args.max_order is not None or args.max_error is not None:
+        args.bound_reason = "bound given by the caller"
+        return
+    if args.shape in SMOOTH_SHAPE_ORDER:
+        args.min_order = SMOOTH_SHAPE_ORDER[args.shape] - ORDER_MARGIN
+        args.bound_reason = f"theoretical order {SMOOTH_SHAPE_ORDER[args.shape]:g} less the margin {ORDER_MARGIN:g}"
+    elif args.shape == "linear":
+        args.max_order = LINEAR_MAX_ORDER
+        args.bound_reason = "linear weights stall"
+    else:
+        raise SystemExit(f"FAIL: convergence: no order known for shape {args.shape}; give --min-order, --max-order or --max-error")
+
+
 def convergence(args):
+    convergence_bounds(args)
     deck = os.path.join(ROOT, "tests/decks/mms_axisymmetric.opts" if args.axisymmetric else "tests/decks/mms_axis_aligned.opts")
     cells = [int(c) for c in args.cells.split(",")]
     errors = []
@@ -117,13 +147,17 @@ def convergence(args):
         with tempfile.TemporaryDirectory() as out:
             s = run(args.burst, deck, out, extra)
         errors.append(s["displacement_error_rms"])
+    name = f"convergence[{'axisymmetric' if args.axisymmetric else str(args.dim) + 'd'},{args.shape},{args.scheme}]"
+    if not all(math.isfinite(e) and e > 0 for e in errors):
+        print(f"  rms displacement errors {errors}: not finite and positive")
+        finish(name, ["errors"])
     orders = [math.log(errors[k] / errors[k + 1]) / math.log(cells[k + 1] / cells[k]) for k in range(len(cells) - 1)]
     print(f"{'mms_axisymmetric' if args.axisymmetric else 'mms_axis_aligned'} {args.dim}-D {args.shape} {args.scheme} F update {args.f_update or 'linear'}: cells {cells}, rms displacement error "
           + ", ".join(f"{e:.3e}" for e in errors) + " m; observed order " + ", ".join(f"{o:.2f}" for o in orders))
     failures = []
     if args.min_order is not None:
         ok = orders[-1] >= args.min_order
-        print(f"  finest observed order {orders[-1]:.2f} >= {args.min_order} {'OK' if ok else 'FAIL'}")
+        print(f"  finest observed order {orders[-1]:.2f} >= {args.min_order} ({args.bound_reason}) {'OK' if ok else 'FAIL'}")
         if not ok:
             failures.append("order")
     if args.max_order is not None:
@@ -133,7 +167,7 @@ def convergence(args):
             failures.append("stall")
     if args.max_error is not None:
         check("finest rms error (m)", errors[-1], args.max_error, failures)
-    finish(f"convergence[{'axisymmetric' if args.axisymmetric else str(args.dim) + 'd'},{args.shape},{args.scheme}]", failures)
+    finish(name, failures)
 
 
 def disks(args):
@@ -477,9 +511,11 @@ def main():
     c.add_argument("--cells", default="8,16,32")
     c.add_argument("--dt", default=None)
     c.add_argument("--f-update", default=None)
-    c.add_argument("--min-order", type=float, default=None)
-    c.add_argument("--max-order", type=float, default=None)
-    c.add_argument("--max-error", type=float, default=None)
+    c.add_argument("--min-order", type=float, default=None, help="fail if the finest pair's observed order is below this "
+                   "(default, when no bound is given: the shape's theoretical order less %g)" % ORDER_MARGIN)
+    c.add_argument("--max-order", type=float, default=None, help="fail if the finest pair's observed order is above this "
+                   "(default for linear weights, which stall: %g)" % LINEAR_MAX_ORDER)
+    c.add_argument("--max-error", type=float, default=None, help="fail if the finest rms displacement error (m) is above this")
     c.add_argument("--axisymmetric", action="store_true", help="the axisymmetric manufactured solution (tests/decks/mms_axisymmetric.opts)")
     d = sub.add_parser("disks")
     d.add_argument("--scheme", default="musl")

@@ -5,8 +5,10 @@ and from centres plus the deformed half-size (the two bracket the surface), thei
 experiment, and for 4340 at 208 m/s the RMS radius error against the digitised profile.
 
   validate   run a list of tests (--cases), print the table, write taylor_validation.csv and
-             one PNG per run (scripts/plot_taylor.py) to --out; with --tol-lf/--tol-df it gates
-             (|error| of both measures within the tolerance), otherwise it only reports
+             one PNG per run (scripts/plot_taylor.py) to --out, and gate: |Lf error| and |Df error|
+             of both measures (centres, surface) within the material's tolerance (TOLERANCE below,
+             or --tol-lf / --tol-df; --check df gates Df alone), and for st208 the profile's RMS
+             radius error within one cell
   parallel   the same coarse run on 1 and 2 ranks: Lf, Df and the energies agree
   sensitivity  one test under one change at a time (resolution, particles per cell, stop, heating,
              rate term, interpolator, step order, bulk viscosity, friction, EOS): what moves Lf and Df
@@ -45,6 +47,21 @@ TESTS = {
 # changes no flow stress that matters here.
 CASE_OPTIONS = {"cu130_mts": ["-copper_flow_stress_min_rate", "1"], "cu146_mts": ["-copper_flow_stress_min_rate", "1"],
                 "cu190_mts": ["-copper_flow_stress_min_rate", "1"]}
+# The gate of `validate`, per material file: the largest |error| (%) of Lf and of Df, both measures, against
+# the experiment (Johnson & Cook 1983, verification.md 4). The slack is the constitutive model's own
+# error, which no grid removes (README, Taylor impact), plus the part of Df the grid has not converged:
+#  - Johnson-Cook (copper and 4340): the rate term C ln(rate) fitted well below the foot's 1e4-1e5 /s
+#    biases the rod long (copper, Lf +5 to +7 %) and changes Df by up to 12 points when C alone is varied
+#    (sensitivity study, cu190); Df is not converged at 32 cells per diameter (it grows by 4 points from
+#    16 to 32). An independent MPM code with the same JC copper constants (Uintah, GIMP, 0.5 mm) gives
+#    Lf +8.5 %, Df -10 to -14 % on cu190. Bound: Lf 10 %, Df 15 %, the band that code reaches. Measured
+#    (32 cells per diameter, axisymmetric, 2026-12-03): worst Lf -8.6 % (st343, whose digitised profile
+#    is itself 8 % off in volume), worst Df +11.8 % (cu130); 3-D quarter at 16: Lf +6.8 %, Df +8.2 %.
+#  - MTS (annealed copper): its rate dependence through thermal activation follows the test; measured
+#    at 32 cells per diameter Lf +1.2 to +4.8 %, Df -3.5 to +4.9 %. Bound: Lf 7 %, Df 8 %: the measured
+#    worst plus the 3-4 points Df moves between 16 and 32 cells per diameter (cu190_mts -7.1 -> -3.5 %),
+#    well inside the JC band, so an MTS run that fell back to JC-like error would fail.
+TOLERANCE = {"copper_ofhc_jc": (10.0, 15.0), "steel_4340_jc": (10.0, 15.0), "copper_annealed_mts": (7.0, 8.0)}
 # verification.md 4: digitised profile of 4340 at 208 m/s (z, r in mm)
 PROFILE_ST208 = ([0, 2.10, 4.02, 6.00, 8.09, 10.11, 12.15, 14.26, 16.30, 18.31, 20.36, 22.50],
                  [5.528, 4.780, 4.300, 4.033, 3.979, 3.881, 3.881, 3.748, 3.783, 3.774, 3.765, 3.810])
@@ -112,6 +129,9 @@ def validate(args):
         if case == "st208":
             row["profile_rms_mm"] = profile_error(out)
             extra = f" profile RMS {row['profile_rms_mm']:.3f} mm"
+        tol_lf = args.tol_lf if args.tol_lf is not None else TOLERANCE[material][0]
+        tol_df = args.tol_df if args.tol_df is not None else TOLERANCE[material][1]
+        row["tol_lf_pct"], row["tol_df_pct"] = tol_lf, tol_df
         rows.append(row)
         print(f"{case:10s} {Lf / L0:9.3f} {lf[0] / L0:6.3f}-{lf[1] / L0:6.3f} {elf[0]:+6.1f} {elf[1]:+6.1f} {Df / D0:9.3f} {df[0] / D0:6.3f}-{df[1] / D0:6.3f} "
               f"{edf[0]:+6.1f} {edf[1]:+6.1f} {t['max_plastic_strain']:7.2f} {t['max_temperature']:6.0f} {1e6 * s['final_time']:8.1f} {s['wall_time_s']:7.1f}{extra}")
@@ -121,12 +141,22 @@ def validate(args):
             if exp:
                 cmd += ["--experiment", exp]
             subprocess.run(cmd, check=True, capture_output=True)
-        if args.tol_lf is not None:
-            for name, errs, tol in (("Lf", elf, args.tol_lf), ("Df", edf, args.tol_df)):
-                ok = max(abs(e) for e in errs) <= tol
-                print(f"  {case} {name} error {errs[0]:+.1f} % (centres), {errs[1]:+.1f} % (surface) within {tol:g} %: {'OK' if ok else 'FAIL'}")
-                if not ok:
-                    failures.append(f"{case} {name}")
+        for name, errs, tol, given in (("Lf", elf, tol_lf, args.tol_lf), ("Df", edf, tol_df, args.tol_df)):
+            if name.lower() not in args.check:
+                print(f"  {case} {name} not gated (--check {','.join(args.check)})")
+                continue
+            ok = max(abs(e) for e in errs) <= tol
+            print(f"  {case} {name} error {errs[0]:+.1f} % (centres), {errs[1]:+.1f} % (surface) within {tol:g} % "
+                  f"({'given' if given is not None else material + ' model band'}): {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{case} {name}")
+        if case == "st208":
+            # the profile: the surface radius of a column of particles is known to one cell (D0/cpd)
+            h = D0 / args.cpd
+            ok = row["profile_rms_mm"] <= h
+            print(f"  {case} profile RMS radius error {row['profile_rms_mm']:.3f} mm within one cell {h:.3f} mm: {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{case} profile")
     if not rows:
         print("taylor validation: FAIL (no run finished)")
         sys.exit(1)
@@ -140,9 +170,7 @@ def validate(args):
     if failures:
         print(f"taylor validation: FAIL ({', '.join(failures)})")
         sys.exit(1)
-    print("taylor validation: OK" if args.tol_lf is not None else "taylor validation: reported (no gate)")
-    if failures:
-        sys.exit(1)
+    print("taylor validation: OK")
 
 
 def parallel(args):
@@ -216,8 +244,9 @@ def main():
     v.add_argument("--extra", default="")
     v.add_argument("--out", default="taylor_validation")
     v.add_argument("--plot", action="store_true")
-    v.add_argument("--tol-lf", type=float, default=None, help="gate: |Lf error| (%%) of both measures")
-    v.add_argument("--tol-df", type=float, default=None, help="gate: |Df error| (%%) of both measures")
+    v.add_argument("--check", type=lambda t: t.split(","), default=["lf", "df"], help="the measures to gate, lf,df (default both)")
+    v.add_argument("--tol-lf", type=float, default=None, help="gate: |Lf error| (%%) of both measures (default: the material's, TOLERANCE)")
+    v.add_argument("--tol-df", type=float, default=None, help="gate: |Df error| (%%) of both measures (default: the material's, TOLERANCE)")
     q = sub.add_parser("parallel")
     q.add_argument("--case", default="cu190")
     q.add_argument("--cpd", type=int, default=8)
@@ -230,6 +259,8 @@ def main():
     e.add_argument("--cpd", type=int, default=16)
     e.add_argument("--ppc", type=int, default=2)
     args = p.parse_args()
+    if args.cmd == "validate" and (not args.check or not set(args.check) <= {"lf", "df"}):
+        p.error(f"--check {','.join(args.check)}: give lf, df or lf,df (a gate on nothing checks nothing)")
     {"validate": validate, "parallel": parallel, "sensitivity": sensitivity}[args.cmd](args)
 
 
