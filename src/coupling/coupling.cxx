@@ -143,9 +143,11 @@ struct ParticleKernel {
       PetscCall(fields.Get(field::material, &mat));
       PetscCall(fields.Get(field::mass, &m));
     }
-    Stencil<DIM, S> st;
+    bool             fill; // the pressure: this step's stencils from P2G(m, mv); the heat: after G2P moved them
+    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
-      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
+      Stencil<DIM, S> &st = stencils[p];
+      if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       // the pressure, or the temperature increment of the particle's own velocity field
       const PetscInt q     = pressure ? 0 : 1 + c.field_of[c.solid_of[mat[p]]] * (DIM + 1) + DIM;
       PetscReal      value = 0;

@@ -45,15 +45,16 @@ struct AmbientImpulseKernel {
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::ambient_pressure, &ambient));
     PetscCall(fields.Get(field::material, &mat));
-    const PetscReal dt = sim.dt;
-    Stencil<DIM, S> st;
+    const PetscReal  dt = sim.dt;
+    bool             fill; // this step's stencils, from P2G(m, mv) at the same positions
+    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
-      if (ambient[p] == 0) continue;
+      Stencil<DIM, S> &st = stencils[p];
+      if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscInt s = c.solid_of[mat[p]];
-      if (s < 0) continue;
+      if (ambient[p] == 0 || s < 0) continue;
       const PetscReal scale = -dt * vol[p] * ambient[p];
       PetscScalar    *field = out + c.field_of[s] * DIM;
-      st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal, const PetscReal dN[]) {
         PetscScalar *node = field + index(i, j, k) * c.nfield * DIM;
         for (int d = 0; d < DIM; ++d) node[d] += scale * dN[d];
