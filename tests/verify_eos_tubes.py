@@ -21,7 +21,9 @@ time (the step cap -max_steps, --step-factor times the steps the exact wave spee
 
 Verdict: FAIL unless on the finest grid |p - p*|/p* < --tol-star (1 %), and every error falls from
 each grid to the next (an error below its floor counts as converged: star pressure 1e-4, shock
-position half a cell of the finer grid).
+position half a cell of the finer grid). --checks picks the verdicts (default all of star,
+falls_star, falls_shock, falls_l1; least_T with --least-T MAT=K: that material's least temperature
+where present, on every grid, at least K).
 
 The exact solutions come from tests/riemann_exact.py: the closed form for ideal and stiffened gases
 (the general-EOS route is printed beside it as an independent check), the general-EOS solver
@@ -401,13 +403,26 @@ def study(args, runner, label):
         failures.append("executable rebuilt during the study")
 
     # verdict
+    checks = set(args.checks.split(","))
     finest = results[-1]
     if "l1_rho" in finest and not finest.get("failed"):
-        check(f"|p - p*|/p* on the plateau, {finest['cells']} cells", finest["star_err"], args.tol_star, failures)
+        if "star" in checks:
+            check(f"|p - p*|/p* on the plateau, {finest['cells']} cells", finest["star_err"], args.tol_star, failures)
     elif not any(f.startswith(f"{finest['cells']} cells") for f in failures):
         failures.append("finest grid")
+    for spec in (args.least_T.split(",") if args.least_T and "least_T" in checks else []):
+        m, floor_T = spec.split("=")
+        for r in results:
+            T = r.get("minima", {}).get(m, {}).get("T_min_present", float("nan"))
+            ok = T >= float(floor_T)
+            print(f"  {r['cells']} cells: least T of {m} where present {T:.4g} K (at least {float(floor_T):g}) {'OK' if ok else 'FAIL'}")
+            if not ok:
+                failures.append(f"{r['cells']} cells: {m} cooled")
+    wanted = {"star_err": "falls_star", "shock_err": "falls_shock", "l1_rho": "falls_l1", "l1_p": "falls_l1"}
     if len(results) > 1:
         for key, name in keys:
+            if wanted[key] not in checks:
+                continue
             for a, b in zip(results, results[1:]):
                 if "l1_rho" not in a or "l1_rho" not in b or a.get("failed") or b.get("failed"):
                     continue
@@ -533,6 +548,8 @@ def make_parser():
         s.add_argument("--timeout", type=float, default=1800.0, help="seconds per burst run")
         s.add_argument("--output-root", default=None, help="keep each run's output in a directory under this (default: a temporary one, removed)")
         s.add_argument("--extra", default="", help="options passed to burst, e.g. \"-ice_conservative_energy 0\"")
+        s.add_argument("--checks", default="star,falls_star,falls_shock,falls_l1,least_T", help="the verdicts that count (see the module's doc)")
+        s.add_argument("--least-T", default="", help="MAT=K[,MAT=K]: a material's least temperature where present must stay at least K")
     sub.add_parser("self_check", help="check this script against exact and faulty profiles (no burst needed)")
     return p
 

@@ -122,6 +122,7 @@ struct IceSolver {
   PetscBool compatible_fluxes = PETSC_TRUE;
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
   PetscBool drag_heating = PETSC_TRUE;         // with conservative_energy: the drag's dissipated kinetic energy becomes heat
+  PetscBool mixed_cell_energy = PETSC_TRUE;    // with conservative_energy: in a cell of several gases each gets its own kinetic and compression energy, and their face works' excess is shared by heat capacity (sources.cxx)
   PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
   PetscReal viscosity[2] = {0.5, 1};          // shock viscosity c1 (linear), c2 (quadratic), viscosity.cxx
   PetscReal cfl = 0.25;

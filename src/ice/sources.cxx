@@ -77,10 +77,18 @@ PetscErrorCode IceSources(IceSolver &ice)
         if (!ice.solid_pressure_dv.empty()) // the pressure source's velocity change of each solid (its work: src/coupling/pressure_work.cxx)
           for (PetscInt m = ice.ngas; m < n; ++m)
             for (PetscInt d = 0; d < 3; ++d) ice.solid_pressure_dv[(idx * (n - ice.ngas) + m - ice.ngas) * 3 + d] = d < dim ? -ice.dt * c[ice.Offset(m, icef::theta)] * grad_p[d] / c[ice.Offset(m, icef::rho)] : 0;
+        // several gases in the cell (-ice_mixed_cell_energy): the conservative totals, for the split below
+        PetscInt  gases_here = 0;
+        PetscReal conservative_total[kIceMaxMaterials];
+        bool      split[kIceMaxMaterials];
+        if (ice.mixed_cell_energy && ice.conservative_energy)
+          for (PetscInt m = 0; m < ice.ngas; ++m) gases_here += c[ice.Offset(m, icef::theta)] >= ice.trace_fraction;
+        const bool mixed = gases_here > 1;
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
           const PetscReal    rho   = c[ice.Offset(m, icef::rho)];
           const PetscReal    theta = c[ice.Offset(m, icef::theta)];
+          if (mixed) split[m] = false;
           // mass conversion (burning, ice.md 2.4): the mass, its momentum and its energy
           const PetscReal  dr  = ice.has_mass_source ? ice.mass_source[idx * n + m] : 0;
           const PetscReal *dmv = ice.has_mass_source ? &ice.momentum_source[(idx * n + m) * 3] : nullptr;
@@ -136,9 +144,11 @@ PetscErrorCode IceSources(IceSolver &ice)
               T_L                      = (total / rho_L - 0.5 * uL2 - e_cold_L) / mat.eos->cv;
               cold_L                   = e_cold_L;
               cold_from_faces          = true;
+              if (mixed) conservative_total[m] = total, split[m] = true;
             } else {
               const PetscReal total = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + 0.5 * u2) + work + de + ke_in;
               T_L                   = (total / rho_L - 0.5 * uL2) / mat.eos->cv;
+              if (mixed) conservative_total[m] = total, split[m] = true;
             }
             // T_L <= 0: the pressure gradient gave the gas more kinetic energy than it holds. In a
             // cell that the momentum exchange settles (a gas in a solid's cell, pushed by the
@@ -148,14 +158,55 @@ PetscErrorCode IceSources(IceSolver &ice)
               T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
               ++ice.energy_fallbacks;
               cold_from_faces = false;
+              if (mixed) split[m] = false;
             }
             deferred = !(T_L > 0);
+            if (mixed && deferred) split[m] = false;
           } else T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
           PetscCheck((T_L > 0 || deferred) && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
           if (cold && !cold_from_faces) IceTemperatureForm(ice, c, idx, m, &cold_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;
           // the advection's total energy adds T_L and the kinetic energy to this (advection.cxx)
           if (cold) c[ice.Offset(m, icef::energy_L)] = cold_L / mat.eos->cv;
+        }
+        if (mixed) {
+          // Several gases: each one's face work follows its own upwind face fractions, which at a
+          // contact can be 1e-16 for a gas that holds half the cell and takes theta grad p of
+          // momentum: its kinetic energy then comes out of its internal energy (a water-air tube's air
+          // at 0.03 K). Instead each gas gets the kinetic energy of its own momentum source and its
+          // own compression work (the temperature form), and what the cell's face works hold beyond
+          // those, a conservation defect, is shared by heat capacity rho_L c_v: total energy stays
+          // conservative, and a light gas is not charged a heavy one's defect.
+          PetscReal defect = 0, capacity = 0, consistent[kIceMaxMaterials], cold_tf[kIceMaxMaterials];
+          for (PetscInt m = 0; m < ice.ngas; ++m) {
+            if (!split[m]) continue;
+            const IceMaterial &mat = ice.materials[m];
+            const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
+            PetscReal          uL2   = 0;
+            for (PetscInt d = 0; d < dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+            cold_tf[m] = 0;
+            const PetscReal T_tf = IceTemperatureForm(ice, c, idx, m, mat.eos->HasColdEnergy() ? &cold_tf[m] : nullptr);
+            consistent[m]        = rho_L * (mat.eos->cv * T_tf + cold_tf[m] + 0.5 * uL2);
+            defect += conservative_total[m] - consistent[m];
+            capacity += rho_L * mat.eos->cv;
+          }
+          PetscReal T_split[kIceMaxMaterials];
+          bool      valid = true;
+          for (PetscInt m = 0; m < ice.ngas; ++m) {
+            if (!split[m]) continue;
+            const IceMaterial &mat   = ice.materials[m];
+            const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
+            PetscReal          uL2   = 0;
+            for (PetscInt d = 0; d < dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+            const PetscReal total = consistent[m] + defect * rho_L * mat.eos->cv / capacity;
+            T_split[m]            = (total / rho_L - 0.5 * uL2 - cold_tf[m]) / mat.eos->cv;
+            valid                 = valid && T_split[m] > 0 && std::isfinite(T_split[m]);
+          }
+          for (PetscInt m = 0; valid && m < ice.ngas; ++m) { // else each keeps its own face work's (checked above)
+            if (!split[m]) continue;
+            c[ice.Offset(m, icef::temp_L)] = T_split[m];
+            if (ice.materials[m].eos->HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_tf[m] / ice.materials[m].eos->cv;
+          }
         }
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
