@@ -177,16 +177,17 @@ PetscErrorCode IceSources(IceSolver &ice)
           // own compression work (the temperature form), and what the cell's face works hold beyond
           // those, a conservation defect, is shared by heat capacity rho_L c_v: total energy stays
           // conservative, and a light gas is not charged a heavy one's defect.
-          PetscReal defect = 0, capacity = 0, consistent[kIceMaxMaterials], cold_tf[kIceMaxMaterials];
+          PetscReal defect = 0, capacity = 0, consistent[kIceMaxMaterials], cold_tf[kIceMaxMaterials], kinetic[kIceMaxMaterials];
           for (PetscInt m = 0; m < ice.ngas; ++m) {
             if (!split[m]) continue;
             const IceMaterial &mat = ice.materials[m];
             const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
             PetscReal          uL2   = 0;
             for (PetscInt d = 0; d < dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
+            kinetic[m] = 0.5 * uL2; // J/kg
             cold_tf[m] = 0;
             const PetscReal T_tf = IceTemperatureForm(ice, c, idx, m, mat.eos->HasColdEnergy() ? &cold_tf[m] : nullptr);
-            consistent[m]        = rho_L * (mat.eos->cv * T_tf + cold_tf[m] + 0.5 * uL2);
+            consistent[m]        = rho_L * (mat.eos->cv * T_tf + cold_tf[m] + kinetic[m]);
             defect += conservative_total[m] - consistent[m];
             capacity += rho_L * mat.eos->cv;
           }
@@ -196,10 +197,8 @@ PetscErrorCode IceSources(IceSolver &ice)
             if (!split[m]) continue;
             const IceMaterial &mat   = ice.materials[m];
             const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
-            PetscReal          uL2   = 0;
-            for (PetscInt d = 0; d < dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
-            const PetscReal total = consistent[m] + defect * rho_L * mat.eos->cv / capacity;
-            T_split[m]            = (total / rho_L - 0.5 * uL2 - cold_tf[m]) / mat.eos->cv;
+            const PetscReal    total = consistent[m] + defect * rho_L * mat.eos->cv / capacity;
+            T_split[m]               = (total / rho_L - kinetic[m] - cold_tf[m]) / mat.eos->cv;
             valid                 = valid && T_split[m] > 0 && std::isfinite(T_split[m]);
           }
           for (PetscInt m = 0; valid && m < ice.ngas; ++m) { // else each keeps its own face work's (checked above)
