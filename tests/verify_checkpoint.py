@@ -139,8 +139,10 @@ def finish(test, failures):
     print(f"{test}: OK")
 
 
-def interrupted(args, base, ranks_a, ranks_b, tag):
-    """Uninterrupted to N on ranks_a; to K with checkpoints on ranks_a, restart to N on ranks_b."""
+def interrupted(args, base, ranks_a, ranks_b, tag, failures):
+    """Uninterrupted to N on ranks_a; to K with checkpoints on ranks_a, restart to N on ranks_b. The
+    restart must say it restarted from the step-K checkpoint: a run that ignored -restart would reach
+    the same answer from step 0."""
     extra = ["-output_interval", str(args.k), "-monitor_interval", "5", *args.extra.split()]
     ref = fresh(os.path.join(base, f"{tag}_ref"))
     run(args, args.deck, ref, [*extra, "-max_steps", str(args.n)], ranks_a)
@@ -148,14 +150,18 @@ def interrupted(args, base, ranks_a, ranks_b, tag):
     run(args, args.deck, got, [*extra, "-max_steps", str(args.k), "-checkpoint_interval", str(args.k)], ranks_a)
     proc = run(args, args.deck, got, [*extra, "-max_steps", str(args.n), "-restart", got], ranks_b)
     line = [l for l in proc.stdout.splitlines() if l.startswith("Restarted from")]
-    print(f"  {line[0] if line else 'FAIL: no restart message'}")
+    expected = f"checkpoint_{args.k:06d}.h5"
+    ok = bool(line) and expected in line[0]
+    print(f"  {line[0] if line else 'no restart message'}: from {expected} {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append(f"no restart from {expected}")
     return ref, got
 
 
 def same(args):
     failures = []
     print(f"same: {args.deck}, {args.n} steps vs {args.k} + restart, {args.ranks} rank(s)")
-    ref, got = interrupted(args, args.out, args.ranks, args.ranks, f"same_np{args.ranks}")
+    ref, got = interrupted(args, args.out, args.ranks, args.ranks, f"same_np{args.ranks}", failures)
     compare_identical(ref, got, args.n, failures)
     finish("checkpoint_same", failures)
 
@@ -164,7 +170,7 @@ def ranks(args):
     failures = []
     a, b = [int(x) for x in args.ranks_from_to.split(",")]
     print(f"ranks: {args.deck}, {args.n} steps on {a} rank(s) vs {args.k} on {a} + restart on {b}")
-    ref, got = interrupted(args, args.out, a, b, f"ranks_{a}to{b}")
+    ref, got = interrupted(args, args.out, a, b, f"ranks_{a}to{b}", failures)
     compare_close(ref, got, args.n, args.tol, failures)
     finish("checkpoint_ranks", failures)
 
