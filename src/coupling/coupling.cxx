@@ -45,7 +45,7 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
   PetscOptionsBegin(sim.comm, "", "Gas-solid coupling", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
-  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases of a cell pay the work their pressure does on the solids there (total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
+  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
   c->solid_of.assign(sim.materials.size(), -1);
   for (size_t m = 0; m < sim.materials.size(); ++m) {
