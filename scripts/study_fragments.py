@@ -194,18 +194,21 @@ def main():
 ENERGY_TOL = 0.02
 
 
-def quick_checks(rows):
+def quick_checks(rows, label=lambda r: f"{r['regularization']} {r['cells']} cells"):
+    """The quick form's verdicts per row (also scripts/study_failure.py): the fragment count within
+    [Grady shear / 2, 3 x Grady tension] and |energy balance error| <= ENERGY_TOL. Returns the failures."""
     failures = []
     for r in rows:
+        name = label(r)
         n, lo, hi, e = int(r["fragments"]), float(r["grady_shear"]), float(r["grady_tension"]), float(r["energy_balance_error"])
         ok = 0.5 * lo <= n <= 3 * hi
-        print(f"  {r['regularization']} {r['cells']} cells: {n} fragments within [shear/2, 3 x tension] = [{0.5 * lo:.2f}, {3 * hi:.2f}]: {'OK' if ok else 'FAIL'}")
+        print(f"  {name}: {n} fragments within [shear/2, 3 x tension] = [{0.5 * lo:.2f}, {3 * hi:.2f}]: {'OK' if ok else 'FAIL'}")
         if not ok:
-            failures.append(f"{r['regularization']} {r['cells']} cells: {n} fragments")
+            failures.append(f"{name}: {n} fragments")
         ok = abs(e) <= ENERGY_TOL
-        print(f"  {r['regularization']} {r['cells']} cells: |energy balance error| {abs(e):.2e} <= {ENERGY_TOL:g}: {'OK' if ok else 'FAIL'}")
+        print(f"  {name}: |energy balance error| {abs(e):.2e} <= {ENERGY_TOL:g}: {'OK' if ok else 'FAIL'}")
         if not ok:
-            failures.append(f"{r['regularization']} {r['cells']} cells: energy balance error {e:+.2e}")
+            failures.append(f"{name}: energy balance error {e:+.2e}")
     return failures
 
 

@@ -461,8 +461,8 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   if (c.charge_pressure_work) {
     ice.solid_pressure_dv.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2] * c.nsolid * 3, 0);
     PetscCall(DMDACreateCompatibleDMDA(ice.da, c.nsolid * 3, &c.da_dv));
-    PetscCall(DMCreateGlobalVector(c.da_dv, &c.dv_global));
     PetscCall(DMCreateLocalVector(c.da_dv, &c.dv_local));
+    PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, c.nsolid * 3, (PetscInt)ice.solid_pressure_dv.size(), ice.solid_pressure_dv.data(), &c.dv_owned));
     PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nfield * sim.grid.dim, &c.da_impulse));
     PetscCall(DMCreateGlobalVector(c.da_impulse, &c.impulse_global));
     PetscCall(DMCreateLocalVector(c.da_impulse, &c.impulse_local));

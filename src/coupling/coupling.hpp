@@ -68,7 +68,7 @@ enum CouplingCounter : int {
   kKineticToNodes,
   kAmbientStressWork,   // the work of the (p - p_ref) I the particles carry in their stress (pressure_work.cxx)
   kPressureWorkCharged, // the work of the gas pressure on the solids that the gases paid (pressure_work.cxx)
-  kPressureWorkHeld,    // of that work, what no gas in its cell could pay (a cell without gas, or a cold gas)
+  kPressureWorkHeld,    // of that work, what no gas paid (a node with no gas around it, or beyond half a gas's temperature in a step)
   kNumCouplingCounters
 };
 PetscReal *CouplingCounters(Simulation &sim); // kNumCouplingCounters values

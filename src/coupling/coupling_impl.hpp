@@ -41,8 +41,8 @@ struct Coupling {
   PetscBool                               charge_pressure_work = PETSC_TRUE;
   DM                                      da_impulse = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
   Vec                                     impulse_global = nullptr, impulse_local = nullptr;
-  DM                                      da_dv = nullptr;   // cells: ice.solid_pressure_dv with its ghost cells
-  Vec                                     dv_global = nullptr, dv_local = nullptr;
+  DM                                      da_dv = nullptr;   // cells: ice.solid_pressure_dv (dv_owned wraps it) and its ghost cells (dv_local)
+  Vec                                     dv_owned = nullptr, dv_local = nullptr;
   DM                                      da_work = nullptr; // nodes: the work of the gas on the solids there
   Vec                                     work_global = nullptr, work_local = nullptr;
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
@@ -64,7 +64,7 @@ struct Coupling {
     VecDestroy(&work_global);
     VecDestroy(&work_local);
     DMDestroy(&da_work);
-    VecDestroy(&dv_global);
+    VecDestroy(&dv_owned);
     VecDestroy(&dv_local);
     DMDestroy(&da_dv);
     VecDestroy(&impulse_global);

@@ -96,17 +96,11 @@ PetscErrorCode CouplingChargePressureWork(Simulation &sim)
   const LocalNodeIndex index(g);
   PetscInt             xs[3], xm[3];
   const PetscScalar   *impulse, *vel, *solid_mass;
-  PetscScalar         *work, *dv;
+  PetscScalar         *work;
   PetscReal            ambient_work = 0;
   // the solids' pressure velocity changes of the owned cells (IceSources) -> with the ghost cells
-  PetscCall(VecGetArray(c.dv_global, &dv));
-  PetscInt o = 0;
-  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
-    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
-      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i)
-        for (PetscInt q = 0; q < ns * 3; ++q) dv[o++] = ice.solid_pressure_dv[ice.LocalIndex(i, j, k) * ns * 3 + q];
-  PetscCall(VecRestoreArray(c.dv_global, &dv));
-  PetscCall(DMGlobalToLocal(c.da_dv, c.dv_global, INSERT_VALUES, c.dv_local));
+  PetscCall(DMLocalToLocalBegin(c.da_dv, c.dv_owned, INSERT_VALUES, c.dv_local));
+  PetscCall(DMLocalToLocalEnd(c.da_dv, c.dv_owned, INSERT_VALUES, c.dv_local));
   const PetscScalar *dv_cells;
   // the work at each owned node: (the cells' pressure impulse + the particles' ambient impulse) . (v_old + v_new)/2
   PetscCall(DMDAGetCorners(c.da_work, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
