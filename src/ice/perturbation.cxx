@@ -8,6 +8,10 @@
 //                                pulses that travel at -c and +c.
 //   -ice_perturbation entropy    temperature spot at uniform pressure: T = T0 (1 + A g), density from
 //                                the EOS at p0; advected unchanged by a uniform flow.
+//   -ice_perturbation checkerboard  the two-cell pressure mode p = p0 (1 + A g (-1)^(i+j+k)), each
+//                                material on its isentrope as for acoustic: the mode a cell-centred
+//                                pressure with node-averaged gradients could leave undamped
+//                                (tests/verify_solid_pressure.py checkerboard).
 // -ice_perturbation_center gives 1 to dim coordinates: with one, |x - x0| is the distance along x
 // (a planar pulse); with more, the distance in those directions.
 #include "ice.hpp"
@@ -16,8 +20,8 @@
 
 namespace burst {
 
-enum class IcePerturbation : int { None = 0, Acoustic = 1, Entropy = 2 };
-static const char *const IcePerturbationNames[] = {"none", "acoustic", "entropy"};
+enum class IcePerturbation : int { None = 0, Acoustic = 1, Entropy = 2, Checkerboard = 3 };
+static const char *const IcePerturbationNames[] = {"none", "acoustic", "entropy", "checkerboard"};
 
 // (rho, T) on the isentrope through (rho, T) at pressure p0 moved to pressure p1 (RK4 in p).
 static void Isentrope(const GasEOS &eos, PetscReal p0, PetscReal p1, PetscReal *rho, PetscReal *T)
@@ -52,7 +56,7 @@ PetscErrorCode IceApplyPerturbation(IceSolver &ice)
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(ice.comm, "", "Gas (ICE) initial perturbation", "ICE");
-  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_perturbation", "Smooth Gaussian perturbation of the uniform initial gas state: none, acoustic (isentropic pressure pulse at rest), entropy (temperature spot at uniform pressure)", IcePerturbationNames, 3, &kind, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_perturbation", "Smooth Gaussian perturbation of the uniform initial gas state: none, acoustic (isentropic pressure pulse at rest), entropy (temperature spot at uniform pressure), checkerboard (two-cell pressure mode under a Gaussian envelope)", IcePerturbationNames, 4, &kind, nullptr));
   PetscCall(PetscOptionsReal("-ice_perturbation_amplitude", "Relative amplitude A of the perturbation (pressure for acoustic, temperature for entropy)", "", amplitude, &amplitude, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_perturbation_amplitude", amplitude, -0.5, 0.5, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_perturbation_width", "Gaussian width w (m) of the perturbation, exp(-r^2/(2 w^2)), > 0", "", width, &width, nullptr));
@@ -83,8 +87,9 @@ PetscErrorCode IceApplyPerturbation(IceSolver &ice)
           PetscReal       rho = 1 / c[ice.Offset(m, icef::spvol)], T = c[ice.Offset(m, icef::temp)];
           const PetscReal p0  = eos.Evaluate(rho, T).pressure;
           PetscReal       p   = p0;
-          if (kind == (int)IcePerturbation::Acoustic) {
-            p = p0 * (1 + amplitude * g);
+          if (kind == (int)IcePerturbation::Acoustic || kind == (int)IcePerturbation::Checkerboard) {
+            const PetscReal sign = kind == (int)IcePerturbation::Checkerboard && (i + j + k) % 2 ? -1 : 1;
+            p                    = p0 * (1 + sign * amplitude * g);
             Isentrope(eos, p0, p, &rho, &T);
           } else {
             T   = T * (1 + amplitude * g);
