@@ -1,9 +1,10 @@
 #!/usr/bin/python3
-"""Fragment count against resolution, with and without a length scale for failure (issue 12).
+"""Fragment count against resolution, with and without a length scale for failure, over porosity seeds.
 
   scripts/study_fragments.py --burst build/burst [--scene options/scenes/cylinder2d_4340.opts]
                              [--cells 80,160,320] [--ppc 2,3,4] [--regularizations none,nonlocal,crack_band]
                              [--cases 80x2,160x2,160x3] [--ranks 2] [--out output/study] [--plot-only]
+                             [--seeds N [--seed0 S]] [--launcher "srun -n {ranks}"] [--jobs K]
 
 For each regularisation (-steel_regularization: none, nonlocal with --length, crack_band with
 --fracture-energy) runs the scene at each cell count (2 x 2 particles per cell) and, at the middle
@@ -13,13 +14,25 @@ cell count, at each number of particles per cell (or exactly the --cases CELLSxP
                            Grady-Hightower band, failure energy and plastic work, the fragment masses
   OUT/fragments_study.png  the count against the cell size per regularisation with the Grady band,
                            the failure energy, and the cumulative fragment-mass distributions
+With --seeds N every case runs with -MATERIAL_random_seed S, S+1, ..., S+N-1 (the initial porosity and damage
+draws; one seed: the scene's own) and the study also writes
+  OUT/fragments_ensemble.csv  per case: the count's mean, sample standard deviation and range over the
+                           seeds, the first-failure velocity's mean and deviation, the Grady band, the
+                           Mott and Grady-Kipp fits of the pooled masses (scripts/fragment_ensemble.py)
+  OUT/fragments_ensemble.png  the counts per seed with mean and deviation, and the pooled cumulative
+                           mass distributions with both fits and Grady's mean fragment mass
+--launcher is the command before burst, {ranks} replaced (default: mpiexec for --ranks > 1); --jobs K
+runs K cases at once (for a launcher that submits to a cluster's queue and waits, e.g. srun).
 --quick runs 80 cells and 2 particles per cell without regularisation only (the suite's test
 study_fragments_quick) and checks it as tests/verify.py grady checks a fragmenting scene: the count within
 the gross bracket [Grady shear / 2, 3 x Grady tension] (counts in the softening regime depend on the
 mesh: only a gross mismatch fails) and |energy balance error| <= 0.02. Exits non-zero when a run fails,
-a --quick check fails, or the CSV or the chart is not written.
+a --quick check fails, or the CSV or the chart is not written. With --quick and --seeds > 1 it also
+checks that the seeds change the fragment masses and that each run's summary.json fits (Mott and
+Grady-Kipp) match numpy's least squares on the run's masses to 1e-8.
 """
 import argparse
+import concurrent.futures
 import csv
 import json
 import os
@@ -32,11 +45,15 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import fragment_ensemble  # noqa: E402
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
-FIELDS = ["regularization", "cells", "particles_per_cell", "cell_size_mm", "particles", "fragments", "fracture_velocity", "grady_shear",
+FIELDS = ["regularization", "cells", "particles_per_cell", "seed", "cell_size_mm", "particles", "fragments", "fracture_velocity", "grady_shear",
           "grady_tension", "failure_energy_J_per_m", "plastic_work_J_per_m", "intact_mass_fraction", "largest_fragment_kg",
-          "energy_balance_error", "wall_time_s", "fragment_masses_kg"]
+          "energy_balance_error", "wall_time_s", "initial_mass", "fragment_masses_kg", "fragment_sizes_m", "mott_N0", "mott_mu_kg",
+          "grady_kipp_N0", "grady_kipp_mu_kg"]
 
 
 def regularization_options(args, reg):
@@ -49,32 +66,43 @@ def regularization_options(args, reg):
 
 
 def fragment_masses(out, summary):
-    """The masses of the counted fragments (the run's -fragments_min_* filters), largest first."""
+    """The masses and sizes of the counted fragments (the run's -fragments_min_* filters), largest first."""
     rows = list(csv.DictReader(open(os.path.join(out, "fragments.csv"))))
     floor = summary["fragment_min_mass_fraction"] * summary["initial_mass"]
-    masses = [float(r["mass"]) for r in rows if int(r["particles"]) >= summary["fragment_min_particles"] and float(r["mass"]) >= floor]
-    return sorted(masses, reverse=True)
+    size = "size_area" if "size_area" in rows[0] else "size_length"
+    kept = [(float(r["mass"]), float(r[size])) for r in rows if int(r["particles"]) >= summary["fragment_min_particles"] and float(r["mass"]) >= floor]
+    return sorted(kept, reverse=True)
 
 
-def run(args, reg, cells, ppc, extra=()):
+def launcher(args):
+    if args.launcher:
+        return args.launcher.format(ranks=args.ranks).split()
+    return [*MPIEXEC, "-n", str(args.ranks)] if args.ranks > 1 else []
+
+
+def run(args, reg, cells, ppc, seed=None, extra=()):
     geometry = "wall" if "cylinder" in args.scene else "ring"
     with tempfile.TemporaryDirectory() as out:
-        cmd = ([*MPIEXEC, "-n", str(args.ranks)] if args.ranks > 1 else []) + [
+        cmd = launcher(args) + [
             args.burst, "-options_file", os.path.join(ROOT, args.scene), "-output_dir", out, "-grid_cells", f"{cells},{cells}",
             f"-{geometry}_particles_per_cell", str(ppc), "-output_interval", "0", "-progress", "false", "-monitor_interval", "100000",
-            *regularization_options(args, reg), *extra]
+            *regularization_options(args, reg), *([f"-{args.material}_random_seed", str(seed)] if seed is not None else []), *extra]
         proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
         if proc.returncode:
             raise SystemExit(proc.stdout[-2000:] + proc.stderr[-2000:])
         with open(os.path.join(out, "summary.json")) as f:
             s = json.load(f)
-        masses = fragment_masses(out, s)
+        kept = fragment_masses(out, s)
     h = (s["grid_upper"][0] - s["grid_lower"][0]) / cells
-    return dict(regularization=reg, cells=cells, particles_per_cell=ppc, cell_size_mm=round(1e3 * h, 6), particles=s["particles"],
+    fit = s.get("fragment_mass_fit") or {}
+    mott, gk = fit.get("mott") or {}, fit.get("grady_kipp") or {}
+    return dict(regularization=reg, cells=cells, particles_per_cell=ppc, seed="" if seed is None else seed, cell_size_mm=round(1e3 * h, 6), particles=s["particles"],
                 fragments=s["fragment_count"], fracture_velocity=s["fracture_velocity"], grady_shear=s["grady_shear"]["sector"],
                 grady_tension=s["grady_tension"]["sector"], failure_energy_J_per_m=s["failure_energy"], plastic_work_J_per_m=s["plastic_work"],
                 intact_mass_fraction=s["intact_mass"] / s["initial_mass"], largest_fragment_kg=s["largest_fragment_mass"],
-                energy_balance_error=s["energy_balance_error"], wall_time_s=s["wall_time_s"], fragment_masses_kg=";".join(f"{m:.6g}" for m in masses))
+                energy_balance_error=s["energy_balance_error"], wall_time_s=s["wall_time_s"], initial_mass=s["initial_mass"],
+                fragment_masses_kg=";".join(f"{m!r}" for m, _ in kept), fragment_sizes_m=";".join(f"{z:.6g}" for _, z in kept),
+                mott_N0=mott.get("N0", ""), mott_mu_kg=mott.get("mu", ""), grady_kipp_N0=gk.get("N0", ""), grady_kipp_mu_kg=gk.get("mu", ""))
 
 
 def plot(rows, args, png):
@@ -154,6 +182,10 @@ def main():
     p.add_argument("--out", default=os.path.join(ROOT, "output/study"))
     p.add_argument("--quick", action="store_true")
     p.add_argument("--plot-only", action="store_true")
+    p.add_argument("--seeds", type=int, default=1, help="porosity/damage seeds per case (-MATERIAL_random_seed); 1: the scene's own seed")
+    p.add_argument("--seed0", type=int, default=1, help="the first seed of --seeds")
+    p.add_argument("--launcher", default="", help="command before burst, {ranks} replaced, e.g. 'srun -n {ranks}' (default: mpiexec)")
+    p.add_argument("--jobs", type=int, default=1, help="runs at once")
     args = p.parse_args()
     regs = ["none"] if args.quick else args.regularizations.split(",")
     if args.cases and not args.quick:
@@ -166,23 +198,36 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     table = os.path.join(args.out, "fragments_study.csv")
     rows = list(csv.DictReader(open(table))) if os.path.exists(table) and not args.quick else []
+    seeds = [None] if args.seeds <= 1 else list(range(args.seed0, args.seed0 + args.seeds))
     if not args.plot_only:
-        for c, k in cases:  # resolution-major: every regularisation at one resolution before the next
-            for reg in regs:
-                if any(r["regularization"] == reg and int(r["cells"]) == c and int(r["particles_per_cell"]) == k for r in rows):
-                    continue
-                row = run(args, reg, c, k)
+        def done(reg, c, k, seed):
+            return any(r["regularization"] == reg and int(r["cells"]) == c and int(r["particles_per_cell"]) == k and str(r.get("seed", "")) == ("" if seed is None else str(seed)) for r in rows)
+        # resolution-major: every regularisation and seed at one resolution before the next
+        todo = [(reg, c, k, seed) for c, k in cases for reg in regs for seed in seeds if not done(reg, c, k, seed)]
+        with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as pool:
+            for row in pool.map(lambda job: run(args, *job), todo):
                 rows.append(row)
                 write_table(table, rows, FIELDS)  # after every run: an interrupted study keeps what it has
-                print(f"{reg:10s} {c:4d} cells, {k} per cell: {row['fragments']:3d} fragments, Grady {row['grady_shear']:.2f}-{row['grady_tension']:.2f}, "
+                print(f"{row['regularization']:10s} {row['cells']:4d} cells, {row['particles_per_cell']} per cell{'' if row['seed'] == '' else ', seed ' + str(row['seed'])}: "
+                      f"{row['fragments']:3d} fragments, Grady {row['grady_shear']:.2f}-{row['grady_tension']:.2f}, "
                       f"V {row['fracture_velocity']:.0f} m/s, failure energy {row['failure_energy_J_per_m']:.3g} J/m, intact {row['intact_mass_fraction']:.3f}, "
                       f"energy error {row['energy_balance_error']:.1e}, {row['wall_time_s']:.0f} s", flush=True)
+    ensemble_csv, ensemble_png = os.path.join(args.out, "fragments_ensemble.csv"), os.path.join(args.out, "fragments_ensemble.png")
+    if args.seeds > 1:
+        chosen = [r for r in rows if str(r.get("seed", "")) in {str(x) for x in seeds}]
+        ensemble = fragment_ensemble.plot_ensemble(chosen, ensemble_png, os.path.basename(args.scene).replace(".opts", ""))
+        write_table(ensemble_csv, ensemble, fragment_ensemble.ENSEMBLE_FIELDS)
+        fragment_ensemble.print_ensemble(ensemble)
+        print("wrote", ensemble_csv, "and", ensemble_png)
     png = os.path.join(args.out, "fragments_study.png")
     plot(rows, args, png)
     print("wrote", table, "and", png)
-    failures = [f"{path} not written" for path in (table, png) if not os.path.exists(path) or not os.path.getsize(path)]
+    written = (table, png, ensemble_csv, ensemble_png) if args.seeds > 1 else (table, png)
+    failures = [f"{path} not written" for path in written if not os.path.exists(path) or not os.path.getsize(path)]
     if args.quick:
         failures += quick_checks(rows)
+        if args.seeds > 1:
+            failures += ensemble_checks(rows)
     if failures:
         print(f"study_fragments: FAIL ({'; '.join(failures)})")
         sys.exit(1)
@@ -209,6 +254,35 @@ def quick_checks(rows, label=lambda r: f"{r['regularization']} {r['cells']} cell
         print(f"  {name}: |energy balance error| {abs(e):.2e} <= {ENERGY_TOL:g}: {'OK' if ok else 'FAIL'}")
         if not ok:
             failures.append(f"{name}: energy balance error {e:+.2e}")
+    return failures
+
+
+def ensemble_checks(rows):
+    """The seeds reach the porosity draws (the runs' fragment masses differ), and burst's per-run fits
+    (summary.json fragment_mass_fit) equal numpy's least squares of ln k on m^(1/2) and on m."""
+    import numpy as np
+
+    failures = []
+    distinct = len({r["fragment_masses_kg"] for r in rows})
+    ok = distinct == len(rows)
+    print(f"  {len(rows)} seeds give {distinct} different sets of fragment masses: {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("seeds that give the same fragments")
+    worst = 0.0
+    for r in rows:
+        masses = np.array(sorted(fragment_ensemble.masses_of(r), reverse=True))
+        if len(masses) < 3:
+            continue
+        lnk = np.log(np.arange(1, len(masses) + 1))
+        for kind, x in (("mott", np.sqrt(masses)), ("grady_kipp", masses)):
+            slope, intercept = np.polyfit(x, lnk, 1)
+            mu = 1 / slope ** 2 if kind == "mott" else -1 / slope
+            for name, mine, theirs in ((f"{kind}_N0", float(r[f"{kind}_N0"]), np.exp(intercept)), (f"{kind}_mu", float(r[f"{kind}_mu_kg"]), mu)):
+                worst = max(worst, abs(mine - theirs) / abs(theirs))
+    ok = worst <= 1e-8
+    print(f"  summary.json's Mott and Grady-Kipp fits against numpy's: largest relative difference {worst:.2e} (tol 1e-8): {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("fits differ from numpy's")
     return failures
 
 

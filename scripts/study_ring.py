@@ -27,7 +27,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 import study_fragments as sf  # noqa: E402
 
-FIELDS = ["seed"] + sf.FIELDS
+FIELDS = sf.FIELDS
 
 
 def plot(rows, args, png):
@@ -94,7 +94,7 @@ def main():
             for reg in args.regularizations.split(","):
                 if any(r["regularization"] == reg and int(r["cells"]) == c and r["seed"] == seed for r in rows):
                     continue
-                row = dict(seed=seed, **sf.run(args, reg, c, 2, extra=[f"-{args.material}_random_seed", seed]))
+                row = sf.run(args, reg, c, 2, seed=seed)
                 rows.append({k: str(v) for k, v in row.items()})
                 sf.write_table(table, rows, FIELDS)
                 print(f"{reg:10s} {c:4d} cells, seed {seed}: {row['fragments']:3d} fragments, Grady {row['grady_shear']:.2f}-{row['grady_tension']:.2f}, "

@@ -8,12 +8,20 @@
 //   2. particles within one cell of the rank's owned box are exchanged (MPI_Allgatherv) and every
 //      rank records the joins between its particles and the other ranks' (label pairs);
 //   3. rank 0 merges the labels of all ranks (union-find on the pairs) and broadcasts the fragment of
-//      each label; fragment sums (mass, momentum, first moment) are reduced to rank 0.
+//      each label; fragment sums (mass, momentum, first and second moments) are reduced to rank 0.
+// Each fragment's size (fragments.csv) comes from its inertia about the centroid: in 2-D the length of
+// the uniform rod with the same largest principal moment, sqrt(12 lambda_max) (an arc of the wall:
+// about its chord), in 3-D the area of the uniform plate with the same two largest moments,
+// 12 sqrt(lambda_1 lambda_2) (a strip of the wall: about its outer surface).
+// The counted fragments' masses are fitted, in summary.json, by least squares on ln N(>= m) with
+// N(>= m_k) = k for the masses sorted largest first: Mott's N0 exp(-(m/mu)^(1/2)) and Grady-Kipp's
+// N0 exp(-m/mu) (Grady, Fragmentation of Rings and Shells, 2006, ch. 2-3).
 // The modelled region is what is counted: a fragment cut by a symmetry plane is one fragment of the
 // quarter model. Failed particles (field `failed` != 0) are not part of any fragment.
 #include "simulation.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -93,6 +101,26 @@ PetscReal       fracture_velocity = -1, fracture_time = -1; // measured at the f
 PetscInt64      last_count = 0;
 PetscReal       initial_mass = -1; // total mass at the first search
 PetscReal       largest_mass = 0, total_intact_mass = 0;
+std::vector<PetscReal> counted_masses; // rank 0: the counted fragments' masses at the last search, kg
+
+// Least squares of ln k on f(m_k) over the masses sorted largest first (N(>= m_k) = k):
+// ln N = ln N0 + slope f(m). Returns false with fewer than three masses or a slope >= 0.
+bool FitCumulative(std::vector<PetscReal> masses, PetscReal (*f)(PetscReal), PetscReal *N0, PetscReal *slope)
+{
+  if (masses.size() < 3) return false;
+  std::sort(masses.begin(), masses.end(), std::greater<PetscReal>());
+  PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const PetscReal n = (PetscReal)masses.size();
+  for (size_t k = 0; k < masses.size(); ++k) {
+    const PetscReal x = f(masses[k]), y = std::log((PetscReal)(k + 1));
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  const PetscReal det = n * sxx - sx * sx;
+  if (!(det > 0)) return false;
+  *slope = (n * sxy - sx * sy) / det;
+  *N0    = std::exp((sy - *slope * sx) / n);
+  return *slope < 0;
+}
 } // namespace
 
 // What the fragment search remembers between steps, for the checkpoint.
@@ -355,8 +383,8 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   PetscCallMPI(MPI_Bcast(&nfragments, 1, MPIU_INT, 0, sim.comm));
   PetscCallMPI(MPI_Bcast(fragment_of.data(), total_labels, MPIU_INT, 0, sim.comm));
 
-  // fragment sums: particles, mass, momentum, first moment
-  const int             nsum = 2 + 2 * 3;
+  // fragment sums: particles, mass, momentum, first moment, second moment (xx, xy, xz, yy, yz, zz)
+  const int             nsum = 2 + 2 * 3 + 6;
   std::vector<PetscReal> sums((size_t)nsum * nfragments, 0), total(sim.rank ? 0 : (size_t)nsum * nfragments);
   for (PetscInt a = 0; a < ni; ++a) {
     const PetscInt p = intact[a], fr = fragment_of[label_of(a)];
@@ -368,6 +396,9 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       s[2 + d] += m[p] * v[dim * p + d];
       s[5 + d] += m[p] * x[dim * p + d];
     }
+    for (PetscInt d = 0, l = 0; d < 3; ++d)
+      for (PetscInt e = d; e < 3; ++e, ++l)
+        if (d < dim && e < dim) s[8 + l] += m[p] * x[dim * p + d] * x[dim * p + e];
   }
   PetscReal mass_local = 0, mass_total = 0;
   for (PetscInt p = 0; p < n; ++p)
@@ -380,9 +411,13 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
     last_count        = 0;
     largest_mass      = 0;
     total_intact_mass = 0;
+    counted_masses.clear();
     for (PetscInt fr = 0; fr < nfragments; ++fr) {
       const PetscReal *s = &total[(size_t)nsum * fr];
-      if (s[0] >= options.min_particles && s[1] >= options.min_mass_fraction * initial_mass) ++last_count;
+      if (s[0] >= options.min_particles && s[1] >= options.min_mass_fraction * initial_mass) {
+        ++last_count;
+        counted_masses.push_back(s[1]);
+      }
       largest_mass = PetscMax(largest_mass, s[1]);
       total_intact_mass += s[1];
     }
@@ -390,14 +425,19 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       const std::string path = sim.output_dir + "/fragments.csv", tmp = path + ".tmp";
       {
         std::ofstream out(tmp);
-        out << "fragment,particles,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z\n";
+        out << "fragment,particles,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z," << (dim == 3 ? "size_area" : "size_length") << "\n";
         out.precision(10);
         for (PetscInt fr = 0; fr < nfragments; ++fr) {
           const PetscReal *s = &total[(size_t)nsum * fr];
           out << fr << "," << (long long)s[0] << "," << s[1];
           for (int d = 0; d < 3; ++d) out << "," << s[5 + d] / s[1];
           for (int d = 0; d < 3; ++d) out << "," << s[2 + d] / s[1];
-          out << "\n";
+          // inertia about the centroid per unit mass, then its principal values (ascending)
+          Eigen::Matrix3d inertia = Eigen::Matrix3d::Zero();
+          for (PetscInt d = 0, l = 0; d < 3; ++d)
+            for (PetscInt e = d; e < 3; ++e, ++l) inertia(d, e) = inertia(e, d) = d < dim && e < dim ? s[8 + l] / s[1] - (s[5 + d] / s[1]) * (s[5 + e] / s[1]) : 0;
+          const Eigen::Vector3d lambda = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(inertia, Eigen::EigenvaluesOnly).eigenvalues().cwiseMax(0.0);
+          out << "," << (dim == 3 ? 12 * std::sqrt(lambda[2] * lambda[1]) : std::sqrt(12 * lambda[2])) << "\n";
         }
       }
       PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", path.c_str());
@@ -419,6 +459,15 @@ PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
     out << "  \"initial_mass\": " << initial_mass << ",\n";
     out << "  \"largest_fragment_mass\": " << largest_mass << ",\n";
     out << "  \"intact_mass\": " << total_intact_mass << ",\n";
+    // the counted fragments' cumulative mass distribution fitted (fewer than three: null)
+    PetscReal N0, slope;
+    out << "  \"fragment_mass_fit\": {\"mott\": ";
+    if (FitCumulative(counted_masses, [](PetscReal m) { return std::sqrt(m); }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << 1 / (slope * slope) << "}";
+    else out << "null";
+    out << ", \"grady_kipp\": ";
+    if (FitCumulative(counted_masses, [](PetscReal m) { return m; }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << -1 / slope << "}";
+    else out << "null";
+    out << "},\n";
   }
   if (options.grady) {
     PetscReal tension, shear;
