@@ -43,11 +43,11 @@ PetscErrorCode PointwiseModelCreate(MPI_Comm comm, const char material[], PetscF
 
 // Reads the real option `opt` (under the block's prefix) with `help` (unit and valid range) and checks
 // lo < value (open_lower) or lo <= value, value <= hi; out of range stops naming the full option.
-inline PetscErrorCode PointwiseOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower)
+inline PetscErrorCode PointwiseOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower, PetscBool open_upper = PETSC_FALSE)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscOptionsReal(opt, help, "Models", *value, value, nullptr));
-  PetscCall(CheckRange(PetscOptionsObject->comm, Prefixed(PetscOptionsObject->prefix, opt).c_str(), *value, lo, hi, open_lower));
+  PetscCall(CheckRange(PetscOptionsObject->comm, Prefixed(PetscOptionsObject->prefix, opt).c_str(), *value, lo, hi, open_lower, open_upper));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,5 +1,6 @@
 // Run-control options: scene name, output, time stepping, MPM scheme, body force.
 #include "simulation.hpp"
+#include <cmath>
 #include "util.hpp"
 
 namespace burst {
@@ -64,6 +65,10 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   {
     PetscInt n = 3;
     PetscCall(PetscOptionsRealArray("-gravity", "Body acceleration gx,gy[,gz] (m/s^2); missing components are 0", "", sim.gravity, &n, &set));
+    PetscInt dim = sim.grid.dim; // the grid reads -dim later; a gz in 2-D would be dropped without a word
+    PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-dim", &dim, nullptr));
+    PetscCheck(!set || n <= dim, sim.comm, PETSC_ERR_USER_INPUT, "Option -gravity has %" PetscInt_FMT " components; it takes at most one per dimension (%" PetscInt_FMT " with -dim %" PetscInt_FMT ")", n, dim, dim);
+    for (PetscInt d = 0; set && d < n; ++d) PetscCheck(std::isfinite(sim.gravity[d]), sim.comm, PETSC_ERR_USER_INPUT, "Option -gravity: component %" PetscInt_FMT " is %g; it must be finite", d, (double)sim.gravity[d]);
   }
   PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.viscosity, 2, nullptr));
   PetscCheck(sim.viscosity[0] >= 0 && sim.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");

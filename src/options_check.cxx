@@ -224,6 +224,10 @@ std::vector<OptionsFeature> RunFeatures(const Simulation &sim, bool point_mode)
     {"coupling_", "", "", "solids in gas (-materials with -ice_materials)", coupled},
     {"", "_burn_", "", "solids in gas (-materials with -ice_materials)", coupled},
     {"ice_", "", "", "gas (-ice_materials)", gas},
+    // read by the set-up in every run, but inert without their feature: said, so a user knows
+    {"taylor_", "", "", "-taylor", sim.taylor != nullptr, true},
+    {"analytic", "", "", "solids (-materials)", !sim.materials.empty(), true},
+    {"mpm_", "", "", "solids (-materials)", !sim.materials.empty(), true},
   };
 }
 
@@ -251,12 +255,38 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     if (ReadLater(name)) continue;
     const OptionsFeature *off = nullptr;
     for (const OptionsFeature &f : features) {
+      if (f.read_when_off) continue; // read in every run: what nothing read is a typo
       const bool match = name.compare(0, f.prefix.size(), f.prefix) == 0 && name.find(f.contains) != std::string::npos && name.size() >= f.suffix.size() && name.compare(name.size() - f.suffix.size(), f.suffix.size(), f.suffix) == 0;
       if (match && !f.on) off = &f;
       if (match) break;
     }
     if (off) PetscCall(PetscPrintf(comm, "Note: option -%s is read only with %s, which is off in this run; ignored\n", name.c_str(), off->needs.c_str()));
     else unused.push_back(name);
+  }
+  // Options that were read but do nothing in this run (read_when_off features that are off)
+  {
+    char *all;
+    PetscCall(PetscOptionsGetAll(nullptr, &all));
+    const std::string s(all);
+    PetscCall(PetscFree(all));
+    std::set<std::string> noted;
+    size_t                pos = 0;
+    while (pos < s.size()) { // "-name value -name ..."
+      const size_t start = s.find_first_not_of(' ', pos);
+      if (start == std::string::npos) break;
+      const size_t end = std::min(s.find(' ', start), s.size());
+      if (s[start] == '-' && end > start + 1 && std::isalpha((unsigned char)s[start + 1])) {
+        const std::string name = s.substr(start + 1, end - start - 1);
+        for (const OptionsFeature &f : features) {
+          if (!f.read_when_off || f.on || noted.count(name) || std::find(unused.begin(), unused.end(), name) != unused.end()) continue;
+          if (name.compare(0, f.prefix.size(), f.prefix) == 0 && name.find(f.contains) != std::string::npos && name.size() >= f.suffix.size() && name.compare(name.size() - f.suffix.size(), f.suffix.size(), f.suffix) == 0) {
+            noted.insert(name);
+            PetscCall(PetscPrintf(comm, "Note: option -%s does nothing without %s, which is off in this run; ignored\n", name.c_str(), f.needs.c_str()));
+          }
+        }
+      }
+      pos = end;
+    }
   }
   // Candidates: every name a component queried, and every option given that something read.
   std::set<std::string> candidates = known;

@@ -54,13 +54,13 @@ PetscErrorCode OptionsRealVector(PetscOptionItems *PetscOptionsObject, const cha
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CheckRange(MPI_Comm comm, const char opt[], PetscReal value, PetscReal lo, PetscReal hi, PetscBool open_lower)
+PetscErrorCode CheckRange(MPI_Comm comm, const char opt[], PetscReal value, PetscReal lo, PetscReal hi, PetscBool open_lower, PetscBool open_upper)
 {
   PetscFunctionBeginUser;
-  const bool ok = std::isfinite(value) && (open_lower ? value > lo : value >= lo) && value <= hi;
+  const bool ok = std::isfinite(value) && (open_lower ? value > lo : value >= lo) && (open_upper ? value < hi : value <= hi);
   if (!ok) {
     if (hi >= PETSC_MAX_REAL) SETERRQ(comm, PETSC_ERR_USER_INPUT, "Option %s = %g is out of range: it must be %s %g", opt, (double)value, open_lower ? ">" : ">=", (double)lo);
-    SETERRQ(comm, PETSC_ERR_USER_INPUT, "Option %s = %g is out of range: it must be in %s%g, %g]", opt, (double)value, open_lower ? "(" : "[", (double)lo, (double)hi);
+    SETERRQ(comm, PETSC_ERR_USER_INPUT, "Option %s = %g is out of range: it must be in %s%g, %g%s", opt, (double)value, open_lower ? "(" : "[", (double)lo, (double)hi, open_upper ? ")" : "]");
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

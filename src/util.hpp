@@ -17,7 +17,7 @@ PetscErrorCode OptionsChoice(PetscOptionItems *PetscOptionsObject, const char op
 PetscErrorCode OptionsRealVector(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal values[], PetscInt n, PetscBool *set);
 
 // Checks lo <= value <= hi (or lo < value with open = true) and names the option on failure.
-PetscErrorCode CheckRange(MPI_Comm comm, const char opt[], PetscReal value, PetscReal lo, PetscReal hi, PetscBool open_lower);
+PetscErrorCode CheckRange(MPI_Comm comm, const char opt[], PetscReal value, PetscReal lo, PetscReal hi, PetscBool open_lower, PetscBool open_upper = PETSC_FALSE);
 
 std::string Prefixed(const char prefix[], const char opt[]);
 

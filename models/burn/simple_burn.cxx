@@ -46,7 +46,7 @@ public:
     PetscCall(BurnOptionsReal(PetscOptionsObject, "-burn_simple_Q", "Simple Burn: heat released per unit burned mass Q (J/kg), >= 0", &Q, 0, PETSC_MAX_REAL, PETSC_FALSE));
     PetscCall(BurnOptionsReal(PetscOptionsObject, "-burn_simple_T_th", "Simple Burn: ignition temperature threshold T_th (K), > 0", &T_th, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscCall(BurnOptionsReal(PetscOptionsObject, "-burn_simple_p_th", "Simple Burn: ignition pressure threshold p_th (Pa), >= 0", &p_th, 0, PETSC_MAX_REAL, PETSC_FALSE));
-    PetscCall(BurnOptionsReal(PetscOptionsObject, "-burn_simple_surface_contrast", "Simple Burn: a cell holds the surface if this < (M_max - M_min)/M_max < 1 over its nodes (-), in [0, 1)", &contrast, 0, 1 - PETSC_MACHINE_EPSILON, PETSC_FALSE));
+    PetscCall(BurnOptionsReal(PetscOptionsObject, "-burn_simple_surface_contrast", "Simple Burn: a cell holds the surface if this < (M_max - M_min)/M_max < 1 over its nodes (-), in [0, 1)", &contrast, 0, 1, PETSC_FALSE, PETSC_TRUE));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscErrorCode View(PetscViewer viewer) const override

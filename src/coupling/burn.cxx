@@ -25,9 +25,9 @@ static PetscErrorCode BurnoutOptions(MPI_Comm comm, PetscReal *fraction, PetscRe
   PetscFunctionBeginUser;
   PetscOptionsBegin(comm, "", "Burning", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_burnout_fraction", "A burning particle is removed (and counted) below this fraction of its seeded mass, in (0, 1)", "", *fraction, fraction, nullptr));
-  PetscCall(CheckRange(comm, "-coupling_burnout_fraction", *fraction, 0, 1, PETSC_TRUE));
+  PetscCall(CheckRange(comm, "-coupling_burnout_fraction", *fraction, 0, 1, PETSC_TRUE, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-coupling_burnout_volume_ratio", "A reactant particle crushed below this ratio of its volume (det F) burns out: the rest of it becomes product gas, in [0, 1)", "", *volume_ratio, volume_ratio, nullptr));
-  PetscCall(CheckRange(comm, "-coupling_burnout_volume_ratio", *volume_ratio, 0, 1, PETSC_FALSE));
+  PetscCall(CheckRange(comm, "-coupling_burnout_volume_ratio", *volume_ratio, 0, 1, PETSC_FALSE, PETSC_TRUE));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

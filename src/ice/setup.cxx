@@ -70,6 +70,20 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCall(PetscOptionsStringArray("-ice_materials", "Names of the gas (ICE) materials; each is configured with -<name>_eos_type and its parameters. None: no gas", "", names, &n, &set));
   if (!set) n = 0;
   PetscCheck(n <= kIceMaxMaterials, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists more than %d materials", kIceMaxMaterials);
+  {
+    // a solid (of -materials) named here would be read as a gas and fail on its equation of state
+    char     *solids[64];
+    PetscInt  nsolid = 64;
+    PetscBool has_solids;
+    PetscCall(PetscOptionsGetStringArray(nullptr, nullptr, "-materials", solids, &nsolid, &has_solids));
+    if (!has_solids) nsolid = 0;
+    std::string clash;
+    for (PetscInt i = 0; i < n; ++i)
+      for (PetscInt j = 0; j < nsolid; ++j)
+        if (!std::strcmp(names[i], solids[j])) clash = names[i];
+    for (PetscInt j = 0; j < nsolid; ++j) PetscCall(PetscFree(solids[j]));
+    PetscCheck(clash.empty(), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s', a solid of -materials: -ice_materials names the gases only; a solid meets the gas through the coupling, which gives it a cell state of its own", clash.c_str());
+  }
   for (PetscInt i = 0; i < n; ++i) {
     for (PetscInt j = 0; j < i; ++j) PetscCheck(std::strcmp(names[i], names[j]), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s' twice", names[i]);
     IceMaterial m;
@@ -394,6 +408,12 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   }
   RiemannSetup rs;
   PetscCall(ReadOptions(*ice, rs));
+  if (rs.set && !help) { // a diaphragm outside the domain would give one uniform state without a word
+    const PetscReal upper0 = grid.lower[0] + grid.cells[0] * grid.h[0];
+    if (rs.shape == RiemannShape::Planar)
+      PetscCheck(rs.position > grid.lower[0] && rs.position < upper0, comm, PETSC_ERR_USER_INPUT, "Option -ice_riemann_position = %g m puts the diaphragm outside the domain: it must be in (%g, %g) m (x)", (double)rs.position, (double)grid.lower[0], (double)upper0);
+    else PetscCheck(rs.position > 0, comm, PETSC_ERR_USER_INPUT, "Option -ice_riemann_position = %g m is the radius of the %s: it must be > 0", (double)rs.position, rs.shape == RiemannShape::Sphere ? "sphere" : "cylinder");
+  }
   ice->ngas = ice->nmat;
   if (ice->nmat == 0 || help) {
     if (help && !grid.solids.empty()) PetscCall(ReadSolidExchange(*ice)); // listed by -help

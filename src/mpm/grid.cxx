@@ -156,8 +156,15 @@ PetscErrorCode CreateGrid(Simulation &sim)
     PetscInt n = 3;
     PetscCall(PetscOptionsIntArray("-grid_cells", "Number of cells per direction (one value per dimension, each >= 1)", "", cells, &n, &set_cells));
     PetscCheck(!set_cells || n == g.dim, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells needs %" PetscInt_FMT " values, got %" PetscInt_FMT, g.dim, n);
+    if (set_cells) { // PETSc's integer parsing wraps a count beyond the index type: read the values again as reals
+      PetscReal as_real[3] = {0, 0, 0};
+      PetscInt  nr         = 3;
+      PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, "-grid_cells", as_real, &nr, nullptr));
+      for (PetscInt d = 0; d < PetscMin(n, nr); ++d)
+        PetscCheck(as_real[d] == (PetscReal)cells[d], sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: %g cells in direction %" PetscInt_FMT " is not a count this build can index (whole numbers from 1 to %g)", (double)as_real[d], d, (double)(PETSC_MAX_INT / 4));
+    }
   }
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_cell_size", "Cell size per direction (m), instead of -grid_cells; rounded to fit the box", cell_size, g.dim, &set_h));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_cell_size", "Cell size per direction (m), rounded to fit the box; overrides -grid_cells (which the scene files set)", cell_size, g.dim, &set_h));
   const char *face_opt[3][2] = {{"-bc_xmin", "-bc_xmax"}, {"-bc_ymin", "-bc_ymax"}, {"-bc_zmin", "-bc_zmax"}};
   for (PetscInt d = 0; d < g.dim; ++d)
     for (int s = 0; s < 2; ++s) {
@@ -177,11 +184,14 @@ PetscErrorCode CreateGrid(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-grid_balance_plastic_weight", g.balance_plastic_weight, 1, PETSC_MAX_REAL, PETSC_FALSE));
   if (!sim.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &sim.ev_balance));
 
+  if (set_h && set_cells) PetscCall(PetscPrintf(sim.comm, "Note: -grid_cell_size overrides -grid_cells\n"));
   for (PetscInt d = 0; d < g.dim; ++d) {
     PetscCheck(g.upper[d] > g.lower[d], sim.comm, PETSC_ERR_USER_INPUT, "Options -grid_lower/-grid_upper: upper corner must exceed lower corner in direction %" PetscInt_FMT " (got %g, %g)", d, (double)g.lower[d], (double)g.upper[d]);
-    if (set_h && !set_cells) {
+    if (set_h) {
       PetscCheck(cell_size[d] > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g is out of range: it must be > 0", (double)cell_size[d]);
-      cells[d] = (PetscInt)PetscMax(1, (PetscInt)std::lround((g.upper[d] - g.lower[d]) / cell_size[d]));
+      const PetscReal count = std::round((g.upper[d] - g.lower[d]) / cell_size[d]);
+      PetscCheck(count <= (PetscReal)PETSC_MAX_INT / 4, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g gives %g cells in direction %" PetscInt_FMT "; at most %g fit a PetscInt index", (double)cell_size[d], (double)count, d, (double)(PETSC_MAX_INT / 4));
+      cells[d] = (PetscInt)PetscMax(1, (PetscInt)count);
     }
     PetscCheck(cells[d] >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: the cell count in direction %" PetscInt_FMT " is %" PetscInt_FMT "; it must be >= 1", d, cells[d]);
     g.cells[d]        = cells[d];

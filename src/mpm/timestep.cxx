@@ -39,6 +39,11 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
     PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": dt set by particle id %" PetscInt64_FMT " (%s): wave speed %g m/s, speed %g m/s\n", sim.step, pid[limit], sim.materials[material[limit]]->Name(), (double)c[limit], (double)speed));
   }
   PetscCall(fields.RestoreAll());
+  static PetscInt warned_step = -1; // a fixed step beyond the stable one is said once per run, when first seen
+  if (sim.dt_fixed > global && warned_step < 0) {
+    warned_step = sim.step;
+    PetscCall(PetscPrintf(sim.comm, "Warning: -mpm_dt = %g s is %.3g times the particles' stable step min h/(c + |v|) = %g s at step %" PetscInt_FMT " (Courant number above 1): the solids' update is unstable; give -mpm_dt 0 for the CFL rule (-mpm_cfl %g)\n", (double)sim.dt_fixed, (double)(sim.dt_fixed / global), (double)global, sim.step, (double)sim.cfl));
+  }
   sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
   PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
   const PetscReal remaining = sim.final_time - sim.time;
