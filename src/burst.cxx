@@ -19,6 +19,9 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include "../models/burn/burn.hpp"
+#include <cstdio>
+#include <exception>
+#include <new>
 
 using namespace burst;
 
@@ -171,7 +174,8 @@ static PetscErrorCode Run(Simulation &sim)
 int main(int argc, char **argv)
 {
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
-  {
+  const char *phase = "set-up";
+  try { // an exception our code lets through is said, with the phase, instead of std::terminate
     Simulation sim;
     PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
     PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
@@ -182,17 +186,31 @@ int main(int argc, char **argv)
     PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
     PetscOptionsEnd();
     PetscCall(RegisterLogging(sim));
-    if (mode == 1) PetscCall(RunPointDriver(sim));
-    else {
+    if (mode == 1) {
+      phase = "the point driver";
+      PetscCall(RunPointDriver(sim));
+    } else {
       PetscCall(SetUp(sim));
       if (!sim.help) {
         PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
         PetscCall(View(sim));
+        phase = "the run";
         PetscCall(Run(sim));
       }
+      phase = "clean-up";
       PetscCall(CouplingDestroy(sim));
       PetscCall(IceDestroy(&sim.ice));
     }
+  } catch (const std::bad_alloc &) {
+    PetscMPIInt rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    std::fprintf(stderr, "burst: out of memory on rank %d during %s (std::bad_alloc); the set-up's estimate did not foresee it: give fewer particles or cells, more ranks, or a smaller -max_memory so that the set-up refuses such a run\n", (int)rank, phase);
+    MPI_Abort(PETSC_COMM_WORLD, PETSC_ERR_MEM);
+  } catch (const std::exception &e) {
+    PetscMPIInt rank = 0;
+    MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+    std::fprintf(stderr, "burst: unexpected exception on rank %d during %s: %s\n", (int)rank, phase, e.what());
+    MPI_Abort(PETSC_COMM_WORLD, PETSC_ERR_LIB);
   }
   PetscCall(MaterialRegistryDestroy());
   PetscCall(GasEOSRegistryDestroy());

@@ -5,6 +5,7 @@
 // second-order advection needs the limited gradient of a donor cell one ghost layer out.
 #include "ice.hpp"
 #include "../util.hpp"
+#include "../memory.hpp"
 #include <cmath>
 #include <cstring>
 
@@ -243,6 +244,12 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
       PetscCheck(lcell[d][r] >= 2 || procs[d] == 1, ice.comm, PETSC_ERR_USER_INPUT, "Gas: rank slot %" PetscInt_FMT " owns %" PetscInt_FMT " cell(s) in direction %" PetscInt_FMT "; the gas solver needs at least 2 per rank: use fewer ranks or more cells", r, lcell[d][r], d);
   }
   ice.stride = ice.nmat * icef::kMatFields + icef::kCellFields;
+  {
+    PetscMPIInt size;
+    PetscCallMPI(MPI_Comm_size(ice.comm, &size));
+    const PetscReal cells = (PetscReal)ice.cells[0] * ice.cells[1] * ice.cells[2];
+    PetscCall(MemoryCheck(ice.comm, "The gas cells (-grid_cells and -ice_materials)", cells / size * ice.stride * kMemoryCellEntryBytes, "use fewer cells or more ranks"));
+  }
   const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
   if (ice.dim == 2) {
     PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_BOX, ice.cells[0], ice.cells[1], m, n, ice.stride, 2, lcell[0].data(), lcell[1].data(), &ice.da));

@@ -6,6 +6,7 @@
 // addressed, and a rank without neighbours has no ghost nodes (its local vectors are its global
 // ones). BOX stencils everywhere: STAR drops corner ghosts in DMLocalToGlobal(ADD_VALUES) (petsc.md 4.4).
 #include "simulation.hpp"
+#include "memory.hpp"
 #include "util.hpp"
 #include "mpm/swarm_access.hpp"
 #include <string>
@@ -71,6 +72,11 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   const DMBoundaryType bt = DM_BOUNDARY_NONE;
   const PetscInt procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
   const PetscInt *l[3] = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
+  if (!ranges && !sim.materials.empty()) { // (without solids the node vectors are not allocated: the gas has its own)
+    const PetscReal nodes = (PetscReal)(g.cells[0] + 1) * (g.cells[1] + 1) * (g.dim == 3 ? g.cells[2] + 1 : 1);
+    const PetscReal bytes = nodes / sim.size * g.num_velocity_fields * (g.dim == 3 ? kMemoryNodeBytes3d : kMemoryNodeBytes2d);
+    PetscCall(MemoryCheck(sim.comm, "The background grid (-grid_cells)", bytes, "use fewer cells (-grid_cells, -grid_cell_size) or more ranks"));
+  }
   if (g.dim == 2) {
     PetscCall(DMDACreate2d(sim.comm, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, procs0[0], procs0[1], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], &g.da_nodes));
   } else {

@@ -6,6 +6,7 @@
 #include "mpm/geometry.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
+#include "memory.hpp"
 #include "mpm/analytic.hpp"
 #include <cmath>
 
@@ -197,6 +198,33 @@ PetscErrorCode SeedParticles(Simulation &sim)
   for (const auto &geo : sim.geometries) max_ppc = PetscMax(max_ppc, geo->particles_per_cell);
   const PetscInt64 max_sub = dim == 2 ? (PetscInt64)max_ppc * max_ppc : (PetscInt64)max_ppc * max_ppc * max_ppc;
   const PetscInt64 ngeom   = (PetscInt64)sim.geometries.size();
+  {
+    // refuse a particle count beyond memory before the points are gathered: first an upper bound
+    // (every sub-cell of every geometry), then, only if that does not fit, an estimate from the cell
+    // centres (a cell whose centre a geometry contains counts all its sub-cells: one test per cell)
+    const PetscReal per_particle = kMemoryParticleFactor * sim.swarm_bytes;
+    PetscReal       bound        = 0;
+    for (const auto &geo : sim.geometries) bound += (PetscReal)(ce[0] - xs[0]) * (ce[1] - xs[1]) * (ce[2] - xs[2]) * std::pow((PetscReal)geo->particles_per_cell, (PetscReal)dim);
+    PetscReal available, most;
+    PetscCall(MemoryAvailablePerRank(sim.comm, &available));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, sim.comm));
+    if (bound * per_particle > available) {
+      PetscReal count = 0;
+      for (PetscInt k = xs[2]; k < ce[2]; ++k)
+        for (PetscInt j = xs[1]; j < ce[1]; ++j)
+          for (PetscInt i = xs[0]; i < ce[0]; ++i) {
+            const PetscInt cell[3] = {i, j, k};
+            PetscReal      x[3]    = {0, 0, 0};
+            for (PetscInt d = 0; d < dim; ++d) x[d] = g.lower[d] + (cell[d] + 0.5) * g.h[d];
+            for (const auto &geo : sim.geometries)
+              if (geo->Contains(x)) count += std::pow((PetscReal)geo->particles_per_cell, (PetscReal)dim);
+          }
+      PetscCallMPI(MPI_Allreduce(&count, &most, 1, MPIU_REAL, MPI_MAX, sim.comm));
+      char what[128];
+      PetscCall(PetscSNPrintf(what, sizeof(what), "Seeding %.3g particles on the fullest rank (%.0f bytes each)", (double)most, (double)per_particle));
+      PetscCall(MemoryCheck(sim.comm, what, count * per_particle, "fewer particles per cell (-<geometry>_particles_per_cell), fewer cells, or more ranks"));
+    }
+  }
   for (PetscInt k = xs[2]; k < ce[2]; ++k)
     for (PetscInt j = xs[1]; j < ce[1]; ++j)
       for (PetscInt i = xs[0]; i < ce[0]; ++i) {
