@@ -7,9 +7,9 @@ PetscErrorCode IsotropicElasticity::SetFromOptions(PetscOptionItems *PetscOption
 {
   PetscBool set = PETSC_FALSE;
   PetscFunctionBeginUser;
-  PetscCall(PetscOptionsReal("-youngs_modulus", "Young's modulus (Pa), required, > 0", "Material", youngs_modulus, &youngs_modulus, &set));
+  PetscCall(PetscOptionsReal("-youngs_modulus", "Young's modulus (Pa), required, in (0, 1e13]", "Material", youngs_modulus, &youngs_modulus, &set));
   PetscCheck(set, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Material '%s' (%s): -%s_youngs_modulus is required (Pa, > 0)", m.Name(), m.Model(), m.Name());
-  PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(PetscOptionsObject->prefix, "youngs_modulus").c_str(), youngs_modulus, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(PetscOptionsObject->prefix, "youngs_modulus").c_str(), youngs_modulus, 0, 1e13, PETSC_TRUE)); // diamond: 1.2e12 Pa
   PetscCall(PetscOptionsReal("-poisson_ratio", "Poisson's ratio (-), in (-1, 0.5)", "Material", poisson_ratio, &poisson_ratio, nullptr));
   PetscCheck(poisson_ratio > -1 && poisson_ratio < 0.5, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%s_poisson_ratio = %g is out of range: it must be in (-1, 0.5)", m.Name(), (double)poisson_ratio);
   shear_modulus = youngs_modulus / (2 * (1 + poisson_ratio));

@@ -527,6 +527,8 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
             for (PetscInt d = 0; d < ice->dim; ++d) u[d] = mat.velocity[d];
           }
           PetscCheck(T > 0 && std::isfinite(T), comm, PETSC_ERR_USER_INPUT, "Gas material %s: initial temperature %g K from its equation of state is not positive; check its density, pressure and -%s_eos_type parameters", mat.name.c_str(), (double)T, mat.name.c_str());
+          // the equilibration solves for p in [1e-6, 1e15] Pa: a state outside it cannot start
+          PetscCheck(mat.solid || (p >= 1e-6 && p <= 1e15 && rho_micro <= 1e5 && T <= 1e6), comm, PETSC_ERR_USER_INPUT, "Gas material %s: the initial state (density %g kg/m^3, temperature %g K, pressure %g Pa) is outside what the solver takes (pressure in [1e-6, 1e15] Pa, density <= 1e5 kg/m^3, temperature <= 1e6 K); check -%s_density, -%s_temperature (or -ice_riemann_left/right) and -%s_eos_type parameters", mat.name.c_str(), (double)rho_micro, (double)T, (double)p, mat.name.c_str(), mat.name.c_str(), mat.name.c_str());
           c[ice->Offset(m, icef::rho)]   = PetscMax(fraction, ice->rho_tiny) * rho_micro;
           c[ice->Offset(m, icef::temp)]  = T;
           c[ice->Offset(m, icef::spvol)] = 1 / rho_micro;

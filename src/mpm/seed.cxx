@@ -135,10 +135,10 @@ PetscErrorCode ReadGeometries(Simulation &sim)
     PetscCall(PetscOptionsReal("-inner_radius", "Annulus inner radius (m)", "", g->inner_radius, &g->inner_radius, nullptr));
     PetscCall(OptionsRealVector(PetscOptionsObject, "-angle_range", "Sector of a disk/annulus/cylinder: start,end angle in degrees (0,90 for a quarter)", g->angle_range, 2, nullptr));
     PetscCall(PetscOptionsInt("-particles_per_cell", "Particles per cell in each direction, >= 1", "", g->particles_per_cell, &g->particles_per_cell, nullptr));
-    PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s)", g->velocity, dim, nullptr));
+    PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s), each component in [-1e5, 1e5]", g->velocity, dim, nullptr));
     PetscCall(PetscOptionsReal("-angular_velocity", "Initial rigid spin about -center (rad/s; about the z axis in 3-D) added to -velocity, default 0", "", g->angular_velocity, &g->angular_velocity, nullptr));
-    PetscCall(PetscOptionsReal("-radial_velocity", "Initial radial velocity added to -velocity (m/s)", "", g->radial_velocity, &g->radial_velocity, nullptr));
-    PetscCall(PetscOptionsReal("-temperature", "Initial temperature (K), > 0", "", g->temperature, &g->temperature, nullptr));
+    PetscCall(PetscOptionsReal("-radial_velocity", "Initial radial velocity added to -velocity (m/s), in [-1e5, 1e5]", "", g->radial_velocity, &g->radial_velocity, nullptr));
+    PetscCall(PetscOptionsReal("-temperature", "Initial temperature (K), in (0, 1e6]", "", g->temperature, &g->temperature, nullptr));
     PetscCall(OptionsChoice(PetscOptionsObject, "-pressure_surface", "Surface of a disk/annulus/cylinder/sphere loaded by the pressure of -<name>_pressure_curve", PressureSurfaceNames, 3, &surface, nullptr));
     g->pressure_surface = (PressureSurface)surface;
     PetscCall(PetscOptionsString("-pressure_curve", "Name of the load curve (of -load_curves) giving the pressure on that surface", "", curve, curve, sizeof(curve), &has_curve));
@@ -151,7 +151,10 @@ PetscErrorCode ReadGeometries(Simulation &sim)
       if (sim.materials[m]->name_ == material) g->material = (PetscInt)m;
     PetscCheck(g->material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%smaterial %s is not one of -materials", names[gi], P, material);
     PetscCheck(g->particles_per_cell >= 1 && g->particles_per_cell <= 16, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sparticles_per_cell = %" PetscInt_FMT " is out of range: it must be in [1, 16]", P, g->particles_per_cell);
-    PetscCall(CheckRange(sim.comm, Prefixed(P, "temperature").c_str(), g->temperature, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(CheckRange(sim.comm, Prefixed(P, "temperature").c_str(), g->temperature, 0, 1e6, PETSC_TRUE));
+    // bounded by physics (detonation products move at ~1e4 m/s): a typo of exponent stops here, not as a NaN in step 0
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(CheckRange(sim.comm, Prefixed(P, "velocity").c_str(), g->velocity[d], -1e5, 1e5, PETSC_FALSE));
+    PetscCall(CheckRange(sim.comm, Prefixed(P, "radial_velocity").c_str(), g->radial_velocity, -1e5, 1e5, PETSC_FALSE));
     if (g->type != GeometryType::Box) PetscCall(CheckRange(sim.comm, Prefixed(P, "radius").c_str(), g->radius, 0, PETSC_MAX_REAL, PETSC_TRUE));
     if (g->type == GeometryType::Annulus) {
       PetscCheck(g->inner_radius >= 0 && g->inner_radius < g->radius, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sinner_radius = %g is out of range: it must be in [0, radius = %g)", P, (double)g->inner_radius, (double)g->radius);
