@@ -65,6 +65,20 @@ PetscReal Rate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscRea
   return v_r * (1 - (K_0m / K_I) * (K_0m / K_I));
 }
 
+// The rate at which the crack equations change a sub-step's answer (1/s), the largest of d cdot/dc
+// (eq. 24: (m/2) cdot/c below K', v_r (K_0m/K_I)^2/c above, from K_I ~ sqrt(c)) and the relaxation
+// rate of the softening term, xdot/(1 + x) = 3 c^2 cdot/(a^3 + c^3); RK4 wants it times h below
+// max_relaxation_per_substep, like the relaxation rates 1/tau_i.
+PetscReal CrackStiffness(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscReal mean_stress, PetscReal c)
+{
+  const PetscReal cdot = Rate(p, v, SS, mean_stress, c);
+  if (cdot <= 0) return 0;
+  const PetscReal K_I = StressIntensity(SS, mean_stress, c), K_0m = FrictionThreshold(p, mean_stress, c);
+  const PetscReal slope = K_I < K_0m * std::sqrt(1 + 2 / p.crack_exponent) ? 0.5 * p.crack_exponent * cdot / c : (mean_stress > 0 ? v.tension : v.compression) * (K_0m / K_I) * (K_0m / K_I) / c;
+  const PetscReal a3 = p.crack_scale * p.crack_scale * p.crack_scale;
+  return std::fmax(slope, 3 * c * c * cdot / (a3 + c * c * c));
+}
+
 // The right-hand side at one stage: element stress rates dS, crack rate, viscous and crack power.
 struct Rates {
   PetscReal dS[kMaxElements][kSym];
@@ -136,32 +150,64 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
   // sub-steps only when the step asks for them: relaxation (RK4 accuracy) and crack growth
   PetscReal substeps = 1;
   if (p.max_relaxation_rate * dt > p.max_relaxation_per_substep) substeps = std::ceil(p.max_relaxation_rate * dt / p.max_relaxation_per_substep);
+  PetscReal t_switch = -1, switch_time_scale = 0;
+  bool      loading_crack = false; // K_I rises through K' in this step (else it falls through it)
   if (c > 0 && speeds.tension + speeds.compression > 0) {
-    // crack growth per sub-step <= r c, with the rate at the start and at an elastic prediction of
-    // the end (a tension step may begin in compression), and the change of K_I per sub-step
-    // <= r max(K_I, K'): the growth law switches branch at K_I = K' and is steep below it (m = 10),
-    // so a step that loads a crack from rest is resolved (r = max_crack_growth_per_substep)
+    // the crack equations' own rate (CrackStiffness) times the sub-step below max_relaxation_per_substep,
+    // at the start and at an elastic prediction of the end (a tension step may begin in compression)
     PetscReal sum[kSym] = {0, 0, 0, 0, 0, 0}, end[kSym];
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) sum[k] += S[i][k];
     for (int k = 0; k < kSym; ++k) end[k] = sum[k] + Ddev2G[k] * dt;
-    const PetscReal mean_end = mean_stress_old + mean_rate * dt;
-    const PetscReal rate0 = Rate(p, speeds, Contract(sum, sum), mean_stress_old, c), rate1 = Rate(p, speeds, Contract(end, end), mean_end, c);
-    const PetscReal growth = std::fmax(rate0, rate1) * dt / (p.max_crack_growth_per_substep * c);
+    const PetscReal mean_end  = mean_stress_old + mean_rate * dt;
+    const PetscReal stiffness = std::fmax(CrackStiffness(p, speeds, Contract(sum, sum), mean_stress_old, c), CrackStiffness(p, speeds, Contract(end, end), mean_end, c));
+    const PetscReal growth    = stiffness * dt / p.max_relaxation_per_substep;
     if (growth > substeps) substeps = std::ceil(growth);
-    const PetscReal K_I0 = StressIntensity(Contract(sum, sum), mean_stress_old, c), K_I1 = StressIntensity(Contract(end, end), mean_end, c);
-    const PetscReal K_ref   = std::fmax(std::fmin(K_I0, K_I1), ThresholdIntensity(p, std::fmin(mean_stress_old, mean_end), c));
-    const PetscReal loading = std::fabs(K_I1 - K_I0) / (p.max_crack_growth_per_substep * K_ref);
-    if (loading > substeps) substeps = std::ceil(loading);
+    // and the crack speed, which loading changes too (through K_I), by at most r_v of itself per
+    // sub-step (r_v = crack_rate_change_per_substep)
+    const PetscReal rate0 = Rate(p, speeds, Contract(sum, sum), mean_stress_old, c), rate1 = Rate(p, speeds, Contract(end, end), mean_end, c);
+    if (rate0 != rate1) {
+      const PetscReal change = std::fabs(rate1 - rate0) / (p.crack_rate_change_per_substep * std::fmax(rate0, rate1));
+      if (change > substeps) substeps = std::ceil(change);
+    }
+    // the growth law switches branch at K_I = K' (eq. 24; steep below, m = 10): a step whose
+    // predicted K_I - K' changes sign gets a sub-step boundary there, and after it sub-steps that
+    // start at r times the time K_I takes to change by K' and grow by half each (graded)
+    const PetscReal f0 = StressIntensity(Contract(sum, sum), mean_stress_old, c) - ThresholdIntensity(p, mean_stress_old, c);
+    const PetscReal f1 = StressIntensity(Contract(end, end), mean_end, c) - ThresholdIntensity(p, mean_end, c);
+    if ((f0 < 0) != (f1 < 0) && f0 != f1) {
+      t_switch          = dt * f0 / (f0 - f1);
+      loading_crack     = f0 < 0;
+      switch_time_scale = dt * ThresholdIntensity(p, mean_stress_old + mean_rate * t_switch, c) / std::fabs(f1 - f0);
+    }
   }
-  const int nsub = substeps > p.max_substeps ? p.max_substeps : (int)substeps;
-  const PetscReal h = dt / nsub;
+  const PetscReal h_uniform = dt / (substeps > p.max_substeps ? p.max_substeps : substeps);
 
-  PetscReal viscous = 0, crack = 0;
+  // on the sub-critical side of the switch cdot goes as (K_I/K_1)^m, a power of t: 2m sub-steps
+  // there (RK4 on t^10 over 20 sub-steps: 3e-4 of that side's growth)
+  // Either refinement is skipped when the crack could not grow by 1e-6 c over the part it refines
+  // (below K': at most v_r/(1 + m/2) times that part over m + 1; after the rise: about v_r times the
+  // time K_I takes to change by K'), as when a step loads a crack from rest far past K'.
+  bool            loading = t_switch > 0 && switch_time_scale > 0 && loading_crack;
+  const PetscReal v_max   = std::fmax(speeds.tension, speeds.compression), m = p.crack_exponent;
+  const PetscReal power_side = t_switch > 0 ? (loading ? t_switch : dt - t_switch) : 0;
+  const PetscReal h_power = v_max * power_side / ((1 + m / 2) * (m + 1)) > 1e-6 * c ? power_side / std::fmin(2 * std::ceil(m), 100.0) : dt;
+  if (loading && v_max * switch_time_scale < 1e-6 * c) loading = false, t_switch = -1;
+  PetscReal       viscous = 0, crack = 0, t = 0, h_graded = p.crack_rate_change_per_substep * switch_time_scale;
+  int       nsub = 0;
   Rates     k1, k2, k3, k4;
   PetscReal Y[kMaxElements][kSym];
-  for (int step = 0; step < nsub; ++step) {
-    const PetscReal m0 = mean_stress_old + mean_rate * step * h;
+  while (t < dt) {
+    PetscReal h = h_uniform;
+    if (t_switch > 0 && nsub < p.max_substeps) {
+      if (t < t_switch - 1e-12 * dt) h = std::fmin(loading ? std::fmin(h, h_power) : h, t_switch - t); // land on the switch
+      else if (loading) {
+        h = std::fmin(h, h_graded);
+        h_graded *= 1.5;
+      } else h = std::fmin(h, h_power);
+    }
+    if (h >= dt - t || dt - t - h < 1e-12 * dt) h = dt - t; // the last sub-step ends on dt
+    const PetscReal m0 = mean_stress_old + mean_rate * t;
     Evaluate(p, speeds, S, c, m0, Ddev2G, k1);
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) Y[i][k] = S[i][k] + 0.5 * h * k1.dS[i][k];
@@ -177,6 +223,8 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
     c += h / 6 * (k1.dc + 2 * (k2.dc + k3.dc) + k4.dc);
     viscous += h / 6 * (k1.viscous + 2 * (k2.viscous + k3.viscous) + k4.viscous);
     crack += h / 6 * (k1.crack + 2 * (k2.crack + k3.crack) + k4.crack);
+    t = h == dt - t ? dt : t + h;
+    ++nsub;
   }
   *crack_radius = c;
   for (int k = 0; k < kSym; ++k) {

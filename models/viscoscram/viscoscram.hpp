@@ -32,10 +32,13 @@
 //
 // Integration: classical RK4 on (S_i, c, dissipated energies) together, with D constant and
 // sigma_m linear over the step; the step is cut into n equal sub-steps only when it asks for it:
-// n = ceil(max(dt / (tau_min r_tau), cdot dt / (c r_c), |Delta K_I| / (r_c max(K_I, K')))),
-// r_tau = max_relaxation_per_substep, r_c = max_crack_growth_per_substep, at most max_substeps
-// (cdot and K_I at the start and at an elastic prediction of the end of the step: the last term
-// resolves a step that loads a crack through the branch switch at K_I = K').
+// n = ceil(max(dt lambda / r, |Delta cdot| / (r_v max cdot))), r = max_relaxation_per_substep,
+// r_v = crack_rate_change_per_substep, lambda the largest of the relaxation rates 1/tau_i,
+// d cdot/dc and the softening rate xdot/(1 + x), cdot and lambda at the start and at an elastic
+// prediction of the end of the step, at most max_substeps. A step whose predicted K_I
+// crosses K' (where eq. 24 switches branch, steep below it) gets a sub-step boundary at the
+// crossing, 2m sub-steps on its sub-critical side (cdot ~ K_I^m there) and, when K_I rises through
+// K', graded sub-steps after the crossing, from r_v times the time K_I takes to change by K', growing by half each, up to dt/n.
 #pragma once
 #include <petscsys.h>
 
@@ -64,8 +67,8 @@ struct Parameters {
   PetscReal    specific_heat          = 996;    // c_v, J/(kg K)
   PetscReal    gruneisen              = 0;      // Gamma
   CrackHeating crack_heating          = CrackHeating::CrackWork;
-  PetscReal    max_relaxation_per_substep  = 0.5;  // sub-step h <= this * tau_min
-  PetscReal    max_crack_growth_per_substep = 0.05; // sub-step crack growth <= this * c, change of K_I <= this * max(K_I, K')
+  PetscReal    max_relaxation_per_substep  = 0.5;  // sub-step h <= this / (fastest rate: 1/tau_min, d cdot/dc, softening)
+  PetscReal    crack_rate_change_per_substep = 0.05; // crack speed change per sub-step <= this * cdot; first sub-step after K_I rises through K', in units of the time K_I takes to change by K'
   int          max_substeps           = 1000;
   // derived by Derive()
   PetscReal shear_modulus      = 0; // G = sum G_i

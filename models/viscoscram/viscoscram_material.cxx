@@ -101,10 +101,10 @@ public:
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "gruneisen").c_str(), params.gruneisen, 0, 10, PETSC_FALSE));
     PetscCall(OptionsChoice(PetscOptionsObject, "-crack_heating", "Crack heating: crack_work = S : d/dt(x S)/(2G) (Hackett & Bennett 2000, the reference code), release = only the energy crack growth releases, xdot S:S/(4G)", CrackHeatingNames, 2, &heating, nullptr));
     params.crack_heating = (viscoscram::CrackHeating)heating;
-    PetscCall(PetscOptionsReal("-max_relaxation_per_substep", "Sub-step when dt > this times the shortest relaxation time (-), > 0", "", params.max_relaxation_per_substep, &params.max_relaxation_per_substep, nullptr));
+    PetscCall(PetscOptionsReal("-max_relaxation_per_substep", "Sub-step so that each sub-step is at most this times the shortest time of the model: the relaxation times tau_i and the crack equations' own rates (-), in (0, 2.5]", "", params.max_relaxation_per_substep, &params.max_relaxation_per_substep, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "max_relaxation_per_substep").c_str(), params.max_relaxation_per_substep, 0, 2.5, PETSC_TRUE));
-    PetscCall(PetscOptionsReal("-max_crack_growth_per_substep", "Sub-step when the crack would grow by more than this fraction of its radius, or its stress intensity K_I change by more than this fraction of max(K_I, K'), in a step (-), > 0", "", params.max_crack_growth_per_substep, &params.max_crack_growth_per_substep, nullptr));
-    PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "max_crack_growth_per_substep").c_str(), params.max_crack_growth_per_substep, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCall(PetscOptionsReal("-crack_rate_change_per_substep", "Sub-step so that the crack speed changes by at most this fraction of itself per sub-step; also the first sub-step after K_I rises through K' (where the growth law switches branch), as a fraction of the time K_I takes to change by K' (-), in (0, 1]", "", params.crack_rate_change_per_substep, &params.crack_rate_change_per_substep, nullptr));
+    PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "crack_rate_change_per_substep").c_str(), params.crack_rate_change_per_substep, 0, 1, PETSC_TRUE));
     PetscInt max_substeps = params.max_substeps;
     PetscCall(PetscOptionsInt("-max_substeps", "Most sub-steps of one stress update (-), >= 1", "", max_substeps, &max_substeps, nullptr));
     PetscCheck(max_substeps >= 1 && max_substeps <= 1000000, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%smax_substeps = %" PetscInt_FMT " is out of range: it must be in [1, 1000000]", prefix, max_substeps);
@@ -212,7 +212,7 @@ public:
     PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: viscoscram (%d Maxwell elements + statistical crack, Green-Naghdi frame)\n  density %g kg/m^3, G = sum G_i %g Pa, bulk modulus %g Pa (nu %g)\n", Name(), params.elements, (double)density_, (double)params.shear_modulus, (double)params.bulk_modulus, (double)poisson_ratio));
     for (int i = 0; i < params.elements; ++i) PetscCall(PetscViewerASCIIPrintf(viewer, "  element %d: G %g Pa, 1/tau %g 1/s\n", i + 1, (double)params.shear_moduli[i], (double)params.relaxation_rates[i]));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  crack: a %g m, c_0 %g m, K_0 %g Pa m^1/2, m %g, v_max %g m/s, friction %g, tension factor %g, speed %g (sqrt(3/2)|D'|)^%g m/s\n", (double)params.crack_scale, (double)initial_crack_radius, (double)params.fracture_toughness, (double)params.crack_exponent, (double)params.max_crack_speed, (double)params.friction, (double)params.tension_growth_factor, (double)params.crack_speed_coefficient, (double)params.crack_speed_exponent));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  heating: c_v %g J/(kg K), Gamma %g, crack heating %s; sub-steps at dt > %g tau_min or crack growth > %g c per step (at most %d)\n", (double)params.specific_heat, (double)params.gruneisen, CrackHeatingNames[(int)params.crack_heating], (double)params.max_relaxation_per_substep, (double)params.max_crack_growth_per_substep, params.max_substeps));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  heating: c_v %g J/(kg K), Gamma %g, crack heating %s; sub-steps of at most %g times the shortest time (relaxation, crack), crack speed change %g per sub-step (at most %d)\n", (double)params.specific_heat, (double)params.gruneisen, CrackHeatingNames[(int)params.crack_heating], (double)params.max_relaxation_per_substep, (double)params.crack_rate_change_per_substep, params.max_substeps));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
