@@ -9,6 +9,10 @@ void Parameters::Derive()
 {
   shear_modulus       = 0;
   max_relaxation_rate = 0;
+  friction_factor     = std::sqrt(45 / (2 * (3 - 2 * friction * friction))) * friction; // eq. 31
+  threshold_factor    = std::sqrt(1 + 2 / crack_exponent);                              // eq. 28
+  growth_factor       = std::pow(1 + crack_exponent / 2, 1 / crack_exponent);           // eq. 29
+  crack_scale_cubed   = crack_scale * crack_scale * crack_scale;
   for (int i = 0; i < elements; ++i) {
     shear_modulus += shear_moduli[i];
     if (relaxation_rates[i] > max_relaxation_rate) max_relaxation_rate = relaxation_rates[i];
@@ -30,54 +34,43 @@ CrackSpeeds Speeds(const Parameters &p, PetscReal deviatoric_rate_norm)
   return {std::fmin(p.tension_growth_factor * v, p.max_crack_speed), std::fmin(v, p.max_crack_speed)};
 }
 
-// K_I of eqs. 26-27: sqrt(3/2) sqrt(pi c) sigma_e, sigma_e = sqrt(S:S + 3 f sigma_m^2)
-inline PetscReal StressIntensity(PetscReal SS, PetscReal mean_stress, PetscReal c)
-{
-  return std::sqrt(1.5 * PETSC_PI * c * (SS + (mean_stress > 0 ? 3 * mean_stress * mean_stress : 0)));
-}
+// The crack at one state: cdot of eq. 24 and what the sub-steps need.
+struct Crack {
+  PetscReal rate;      // cdot, m/s
+  PetscReal stiffness; // how fast the crack equations change a sub-step's answer, 1/s (see below)
+  PetscReal excess;    // K_I - K', Pa m^1/2 (the growth law switches branch at 0)
+  PetscReal K_prime;   // K', Pa m^1/2
+};
 
-// K_0m of eq. 30 (crack-face friction raises the threshold in compression, eq. 31 for mu')
-inline PetscReal FrictionThreshold(const Parameters &p, PetscReal mean_stress, PetscReal c)
+// eqs. 24-31 at deviator norm SS = S:S, mean stress and crack radius c, with the speeds chosen.
+// stiffness: the largest of d cdot/dc ((m/2) cdot/c below K', v_r (K_0m/K_I)^2/c above, from
+// K_I ~ sqrt(c)) and the relaxation rate of the softening term, xdot/(1 + x) = 3 c^2 cdot/(a^3 + c^3);
+// RK4 wants it times h below max_relaxation_per_substep, like the relaxation rates 1/tau_i.
+template <bool with_stiffness>
+inline Crack Evaluate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscReal mean_stress, PetscReal c)
 {
-  const PetscReal mu  = mean_stress > 0 ? 0 : std::sqrt(45 / (2 * (3 - 2 * p.friction * p.friction))) * p.friction;
-  const PetscReal a_f = -mu * mean_stress * std::sqrt(c);
-  return p.fracture_toughness * std::sqrt(1 + PETSC_PI * a_f * (1 + a_f / p.fracture_toughness) / p.fracture_toughness);
-}
-
-// K' of eq. 28, where the growth law switches branch
-inline PetscReal ThresholdIntensity(const Parameters &p, PetscReal mean_stress, PetscReal c) { return FrictionThreshold(p, mean_stress, c) * std::sqrt(1 + 2 / p.crack_exponent); }
-
-// eq. 24 with the speed already chosen
-PetscReal Rate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscReal mean_stress, PetscReal c)
-{
-  if (c <= 0) return 0;
+  Crack           out{0, 0, 0, 0};
   const bool      tension = mean_stress > 0;
-  const PetscReal v_r     = tension ? v.tension : v.compression;
-  if (v_r <= 0) return 0;
-  const PetscReal K_I     = StressIntensity(SS, mean_stress, c); // eqs. 26-27
-  const PetscReal K_0m    = FrictionThreshold(p, mean_stress, c); // eqs. 30-31
-  const PetscReal m       = p.crack_exponent;
-  const PetscReal K_prime = K_0m * std::sqrt(1 + 2 / m);          // eq. 28
-  if (K_I < K_prime) {
-    const PetscReal K_1 = K_prime * std::pow(1 + m / 2, 1 / m);       // eq. 29
-    return v_r * std::pow(K_I / K_1, m);
+  const PetscReal K_I     = std::sqrt(1.5 * PETSC_PI * c * (SS + (tension ? 3 * mean_stress * mean_stress : 0))); // eqs. 26-27
+  PetscReal       K_0m    = p.fracture_toughness;
+  if (!tension && p.friction > 0) { // eqs. 30-31: crack-face friction raises the threshold in compression
+    const PetscReal a_f = -p.friction_factor * mean_stress * std::sqrt(c);
+    K_0m *= std::sqrt(1 + PETSC_PI * a_f * (1 + a_f / p.fracture_toughness) / p.fracture_toughness);
   }
-  return v_r * (1 - (K_0m / K_I) * (K_0m / K_I));
+  out.K_prime           = K_0m * p.threshold_factor; // eq. 28
+  out.excess            = K_I - out.K_prime;
+  const PetscReal v_r   = tension ? v.tension : v.compression;
+  if (c <= 0 || v_r <= 0) return out;
+  const bool below = K_I < out.K_prime;
+  out.rate         = below ? v_r * std::pow(K_I / (out.K_prime * p.growth_factor), p.crack_exponent) : v_r * (1 - (K_0m / K_I) * (K_0m / K_I)); // eqs. 24, 29
+  if (with_stiffness) {
+    const PetscReal slope = below ? 0.5 * p.crack_exponent * out.rate / c : v_r * (K_0m / K_I) * (K_0m / K_I) / c;
+    out.stiffness         = std::fmax(slope, 3 * c * c * out.rate / (p.crack_scale_cubed + c * c * c));
+  }
+  return out;
 }
 
-// The rate at which the crack equations change a sub-step's answer (1/s), the largest of d cdot/dc
-// (eq. 24: (m/2) cdot/c below K', v_r (K_0m/K_I)^2/c above, from K_I ~ sqrt(c)) and the relaxation
-// rate of the softening term, xdot/(1 + x) = 3 c^2 cdot/(a^3 + c^3); RK4 wants it times h below
-// max_relaxation_per_substep, like the relaxation rates 1/tau_i.
-PetscReal CrackStiffness(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscReal mean_stress, PetscReal c)
-{
-  const PetscReal cdot = Rate(p, v, SS, mean_stress, c);
-  if (cdot <= 0) return 0;
-  const PetscReal K_I = StressIntensity(SS, mean_stress, c), K_0m = FrictionThreshold(p, mean_stress, c);
-  const PetscReal slope = K_I < K_0m * std::sqrt(1 + 2 / p.crack_exponent) ? 0.5 * p.crack_exponent * cdot / c : (mean_stress > 0 ? v.tension : v.compression) * (K_0m / K_I) * (K_0m / K_I) / c;
-  const PetscReal a3 = p.crack_scale * p.crack_scale * p.crack_scale;
-  return std::fmax(slope, 3 * c * c * cdot / (a3 + c * c * c));
-}
+PetscReal Rate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, PetscReal mean_stress, PetscReal c) { return Evaluate<false>(p, v, SS, mean_stress, c).rate; }
 
 // The right-hand side at one stage: element stress rates dS, crack rate, viscous and crack power.
 struct Rates {
@@ -85,7 +78,7 @@ struct Rates {
   PetscReal dc, viscous, crack;
 };
 
-inline void Evaluate(const Parameters &p, const CrackSpeeds &v, const PetscReal (*S)[kSym], PetscReal c, PetscReal mean_stress, const PetscReal Ddev2G[kSym], Rates &r)
+inline void EvaluateRates(const Parameters &p, const CrackSpeeds &v, const PetscReal (*S)[kSym], PetscReal c, PetscReal mean_stress, const PetscReal Ddev2G[kSym], Rates &r)
 {
   const int       n = p.elements;
   PetscReal       sum[kSym] = {0, 0, 0, 0, 0, 0}, relax[kSym] = {0, 0, 0, 0, 0, 0};
@@ -96,8 +89,8 @@ inline void Evaluate(const Parameters &p, const CrackSpeeds &v, const PetscReal 
     if (lambda > 0) viscous += lambda * Contract(S[i], S[i]) / (2 * p.shear_moduli[i]);
   }
   const PetscReal SS = Contract(sum, sum);
-  const PetscReal a3 = p.crack_scale * p.crack_scale * p.crack_scale;
-  r.dc               = Rate(p, v, SS, mean_stress, c);
+  const PetscReal a3 = p.crack_scale_cubed;
+  r.dc               = c > 0 ? Rate(p, v, SS, mean_stress, c) : 0;
   const PetscReal x = c * c * c / a3, xdot = 3 * c * c * r.dc / a3;
   PetscReal       Sdot[kSym];
   for (int k = 0; k < kSym; ++k) Sdot[k] = (Ddev2G[k] - relax[k] - xdot * sum[k]) / (1 + x);
@@ -153,32 +146,29 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
   PetscReal t_switch = -1, switch_time_scale = 0;
   bool      loading_crack = false; // K_I rises through K' in this step (else it falls through it)
   if (c > 0 && speeds.tension + speeds.compression > 0) {
-    // the crack equations' own rate (CrackStiffness) times the sub-step below max_relaxation_per_substep,
+    // the crack equations' own rate (Crack::stiffness) times the sub-step below max_relaxation_per_substep,
     // at the start and at an elastic prediction of the end (a tension step may begin in compression)
     PetscReal sum[kSym] = {0, 0, 0, 0, 0, 0}, end[kSym];
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) sum[k] += S[i][k];
     for (int k = 0; k < kSym; ++k) end[k] = sum[k] + Ddev2G[k] * dt;
-    const PetscReal mean_end  = mean_stress_old + mean_rate * dt;
-    const PetscReal stiffness = std::fmax(CrackStiffness(p, speeds, Contract(sum, sum), mean_stress_old, c), CrackStiffness(p, speeds, Contract(end, end), mean_end, c));
-    const PetscReal growth    = stiffness * dt / p.max_relaxation_per_substep;
+    const PetscReal mean_end = mean_stress_old + mean_rate * dt;
+    const Crack     crack0 = Evaluate<true>(p, speeds, Contract(sum, sum), mean_stress_old, c), crack1 = Evaluate<true>(p, speeds, Contract(end, end), mean_end, c);
+    const PetscReal growth = std::fmax(crack0.stiffness, crack1.stiffness) * dt / p.max_relaxation_per_substep;
     if (growth > substeps) substeps = std::ceil(growth);
     // and the crack speed, which loading changes too (through K_I), by at most r_v of itself per
     // sub-step (r_v = crack_rate_change_per_substep)
-    const PetscReal rate0 = Rate(p, speeds, Contract(sum, sum), mean_stress_old, c), rate1 = Rate(p, speeds, Contract(end, end), mean_end, c);
-    if (rate0 != rate1) {
-      const PetscReal change = std::fabs(rate1 - rate0) / (p.crack_rate_change_per_substep * std::fmax(rate0, rate1));
+    if (crack0.rate != crack1.rate) {
+      const PetscReal change = std::fabs(crack1.rate - crack0.rate) / (p.crack_rate_change_per_substep * std::fmax(crack0.rate, crack1.rate));
       if (change > substeps) substeps = std::ceil(change);
     }
     // the growth law switches branch at K_I = K' (eq. 24; steep below, m = 10): a step whose
-    // predicted K_I - K' changes sign gets a sub-step boundary there, and after it sub-steps that
-    // start at r times the time K_I takes to change by K' and grow by half each (graded)
-    const PetscReal f0 = StressIntensity(Contract(sum, sum), mean_stress_old, c) - ThresholdIntensity(p, mean_stress_old, c);
-    const PetscReal f1 = StressIntensity(Contract(end, end), mean_end, c) - ThresholdIntensity(p, mean_end, c);
+    // predicted K_I - K' changes sign gets a sub-step boundary there (see the loop)
+    const PetscReal f0 = crack0.excess, f1 = crack1.excess;
     if ((f0 < 0) != (f1 < 0) && f0 != f1) {
       t_switch          = dt * f0 / (f0 - f1);
       loading_crack     = f0 < 0;
-      switch_time_scale = dt * ThresholdIntensity(p, mean_stress_old + mean_rate * t_switch, c) / std::fabs(f1 - f0);
+      switch_time_scale = dt * (crack0.K_prime + (crack1.K_prime - crack0.K_prime) * t_switch / dt) / std::fabs(f1 - f0);
     }
   }
   const PetscReal h_uniform = dt / (substeps > p.max_substeps ? p.max_substeps : substeps);
@@ -208,16 +198,16 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
     }
     if (h >= dt - t || dt - t - h < 1e-12 * dt) h = dt - t; // the last sub-step ends on dt
     const PetscReal m0 = mean_stress_old + mean_rate * t;
-    Evaluate(p, speeds, S, c, m0, Ddev2G, k1);
+    EvaluateRates(p, speeds, S, c, m0, Ddev2G, k1);
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) Y[i][k] = S[i][k] + 0.5 * h * k1.dS[i][k];
-    Evaluate(p, speeds, Y, c + 0.5 * h * k1.dc, m0 + 0.5 * h * mean_rate, Ddev2G, k2);
+    EvaluateRates(p, speeds, Y, c + 0.5 * h * k1.dc, m0 + 0.5 * h * mean_rate, Ddev2G, k2);
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) Y[i][k] = S[i][k] + 0.5 * h * k2.dS[i][k];
-    Evaluate(p, speeds, Y, c + 0.5 * h * k2.dc, m0 + 0.5 * h * mean_rate, Ddev2G, k3);
+    EvaluateRates(p, speeds, Y, c + 0.5 * h * k2.dc, m0 + 0.5 * h * mean_rate, Ddev2G, k3);
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) Y[i][k] = S[i][k] + h * k3.dS[i][k];
-    Evaluate(p, speeds, Y, c + h * k3.dc, m0 + h * mean_rate, Ddev2G, k4);
+    EvaluateRates(p, speeds, Y, c + h * k3.dc, m0 + h * mean_rate, Ddev2G, k4);
     for (int i = 0; i < n; ++i)
       for (int k = 0; k < kSym; ++k) S[i][k] += h / 6 * (k1.dS[i][k] + 2 * (k2.dS[i][k] + k3.dS[i][k]) + k4.dS[i][k]);
     c += h / 6 * (k1.dc + 2 * (k2.dc + k3.dc) + k4.dc);

@@ -73,6 +73,7 @@ struct Parameters {
   // derived by Derive()
   PetscReal shear_modulus      = 0; // G = sum G_i
   PetscReal max_relaxation_rate = 0;
+  PetscReal friction_factor = 0, threshold_factor = 0, growth_factor = 0, crack_scale_cubed = 0; // mu', K'/K_0m, K_1/K', a^3
   void      Derive();
 };
 
