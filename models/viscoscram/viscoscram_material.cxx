@@ -56,6 +56,7 @@ public:
     // PBX 9501 (options/materials/pbx9501_viscoscram.opts gives the sources)
     const PetscReal G[5] = {3.5e8, 1.739e8, 5.212e8, 9.085e8, 6.875e8}, rates[5] = {0, 7.32e3, 7.32e4, 7.32e5, 2e6};
     for (int i = 0; i < 5; ++i) params.shear_moduli[i] = G[i], params.relaxation_rates[i] = rates[i];
+    params.gruneisen = 1.0; // Uintah's PBX 9501 Gamma
   }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
