@@ -120,7 +120,7 @@ def crack_growth(args):
     with tempfile.TemporaryDirectory() as tmp:
         for label, path, rate, strain, steps in cases:
             # the coarse run halves the resolution: half the steps and twice the sub-step limits
-            coarsen = {steps // 2: ["-pbx_crack_rate_change_per_substep", "0.1", "-pbx_max_relaxation_per_substep", "1.0"], steps: []}
+            coarsen = {steps // 2: ["-pbx_crack_rate_change_per_substep", "0.5", "-pbx_max_relaxation_per_substep", "1.0"], steps: []}
             runs = {n: point(args.burst, [*path, "-point_rate", repr(rate), "-point_final_strain", repr(strain), "-point_steps", str(n), *coarsen[n]],
                              os.path.join(tmp, f"c{n}.csv")) for n in (steps // 2, steps)}
             d, coarse = runs[steps], runs[steps // 2]

@@ -68,7 +68,7 @@ struct Parameters {
   PetscReal    gruneisen              = 0;      // Gamma
   CrackHeating crack_heating          = CrackHeating::CrackWork;
   PetscReal    max_relaxation_per_substep  = 0.5;  // sub-step h <= this / (fastest rate: 1/tau_min, d cdot/dc, softening)
-  PetscReal    crack_rate_change_per_substep = 0.05; // crack speed change per sub-step <= this * cdot; first sub-step after K_I rises through K', in units of the time K_I takes to change by K'
+  PetscReal    crack_rate_change_per_substep = 0.25; // crack speed change per sub-step <= this * cdot; first sub-step after K_I rises through K', in units of the time K_I takes to change by K'
   int          max_substeps           = 1000;
   // derived by Derive()
   PetscReal shear_modulus      = 0; // G = sum G_i

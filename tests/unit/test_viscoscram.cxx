@@ -51,7 +51,6 @@ vs::Parameters Pbx9501(bool cracks)
   for (int i = 0; i < 5; ++i) p.shear_moduli[i] = kG[i], p.relaxation_rates[i] = kLambda[i];
   p.max_crack_speed            = cracks ? 300 : 0;
   p.max_relaxation_per_substep = 1e30; // no sub-steps unless a test asks for them
-  p.crack_rate_change_per_substep       = 0.05;
   p.Derive();
   p.bulk_modulus = 2 * p.shear_modulus * 1.3 / (3 * 0.4);
   return p;
