@@ -13,9 +13,14 @@ void Parameters::Derive()
   threshold_factor    = std::sqrt(1 + 2 / crack_exponent);                              // eq. 28
   growth_factor       = std::pow(1 + crack_exponent / 2, 1 / crack_exponent);           // eq. 29
   crack_scale_cubed   = crack_scale * crack_scale * crack_scale;
+  integer_exponent    = crack_exponent == std::floor(crack_exponent) && crack_exponent >= 1 && crack_exponent <= 64 ? (int)crack_exponent : 0;
   for (int i = 0; i < elements; ++i) {
     shear_modulus += shear_moduli[i];
     if (relaxation_rates[i] > max_relaxation_rate) max_relaxation_rate = relaxation_rates[i];
+  }
+  for (int i = 0; i < kMaxElements; ++i) {
+    shear_fraction[i] = i < elements ? shear_moduli[i] / shear_modulus : 0;
+    viscous_weight[i] = i < elements ? relaxation_rates[i] / (2 * shear_moduli[i]) : 0;
   }
 }
 
@@ -32,6 +37,16 @@ CrackSpeeds Speeds(const Parameters &p, PetscReal deviatoric_rate_norm)
   const PetscReal rate = std::sqrt(1.5) * deviatoric_rate_norm;
   const PetscReal v    = rate > 1e-8 ? p.crack_speed_coefficient * std::pow(rate, p.crack_speed_exponent) : 0;
   return {std::fmin(p.tension_growth_factor * v, p.max_crack_speed), std::fmin(v, p.max_crack_speed)};
+}
+
+// x^m, by repeated squaring when m is a whole number (m = 10: four multiplications instead of pow)
+inline PetscReal Power(const Parameters &p, PetscReal x)
+{
+  if (!p.integer_exponent) return std::pow(x, p.crack_exponent);
+  PetscReal result = 1, base = x;
+  for (int e = p.integer_exponent; e; e >>= 1, base *= base)
+    if (e & 1) result *= base;
+  return result;
 }
 
 // The crack at one state: cdot of eq. 24 and what the sub-steps need.
@@ -62,7 +77,7 @@ inline Crack Evaluate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, P
   const PetscReal v_r   = tension ? v.tension : v.compression;
   if (c <= 0 || v_r <= 0) return out;
   const bool below = K_I < out.K_prime;
-  out.rate         = below ? v_r * std::pow(K_I / (out.K_prime * p.growth_factor), p.crack_exponent) : v_r * (1 - (K_0m / K_I) * (K_0m / K_I)); // eqs. 24, 29
+  out.rate         = below ? v_r * Power(p, K_I / (out.K_prime * p.growth_factor)) : v_r * (1 - (K_0m / K_I) * (K_0m / K_I)); // eqs. 24, 29
   if (with_stiffness) {
     const PetscReal slope = below ? 0.5 * p.crack_exponent * out.rate / c : v_r * (K_0m / K_I) * (K_0m / K_I) / c;
     out.stiffness         = std::fmax(slope, 3 * c * c * out.rate / (p.crack_scale_cubed + c * c * c));
@@ -86,20 +101,23 @@ inline void EvaluateRates(const Parameters &p, const CrackSpeeds &v, const Petsc
   for (int i = 0; i < n; ++i) {
     const PetscReal lambda = p.relaxation_rates[i];
     for (int k = 0; k < kSym; ++k) sum[k] += S[i][k], relax[k] += lambda * S[i][k];
-    if (lambda > 0) viscous += lambda * Contract(S[i], S[i]) / (2 * p.shear_moduli[i]);
+    viscous += p.viscous_weight[i] * Contract(S[i], S[i]); // S_i:S_i/(2 G_i tau_i)
   }
   const PetscReal SS = Contract(sum, sum);
   const PetscReal a3 = p.crack_scale_cubed;
   r.dc               = c > 0 ? Rate(p, v, SS, mean_stress, c) : 0;
   const PetscReal x = c * c * c / a3, xdot = 3 * c * c * r.dc / a3;
   PetscReal       Sdot[kSym];
-  for (int k = 0; k < kSym; ++k) Sdot[k] = (Ddev2G[k] - relax[k] - xdot * sum[k]) / (1 + x);
+  const PetscReal soften = 1 / (1 + x);
+  for (int k = 0; k < kSym; ++k) Sdot[k] = (Ddev2G[k] - relax[k] - xdot * sum[k]) * soften;
   PetscReal crack_rate_stress[kSym]; // (xdot S + x Sdot) = 2 G times the crack strain rate
   for (int k = 0; k < kSym; ++k) crack_rate_stress[k] = xdot * sum[k] + x * Sdot[k];
   const PetscReal G = p.shear_modulus;
+  PetscReal drive[kSym]; // 2 G D' less the crack term, shared by the elements in proportion G_i/G
+  for (int k = 0; k < kSym; ++k) drive[k] = Ddev2G[k] - crack_rate_stress[k];
   for (int i = 0; i < n; ++i) {
-    const PetscReal g = p.shear_moduli[i] / G, lambda = p.relaxation_rates[i];
-    for (int k = 0; k < kSym; ++k) r.dS[i][k] = g * Ddev2G[k] - lambda * S[i][k] - g * crack_rate_stress[k];
+    const PetscReal g = p.shear_fraction[i], lambda = p.relaxation_rates[i];
+    for (int k = 0; k < kSym; ++k) r.dS[i][k] = g * drive[k] - lambda * S[i][k];
   }
   r.viscous = viscous;
   r.crack   = p.crack_heating == CrackHeating::CrackWork ? Contract(sum, crack_rate_stress) / (2 * G) : xdot * SS / (4 * G);
@@ -225,7 +243,6 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
   out->viscous_dissipation = viscous;
   out->crack_dissipation   = crack;
   out->temperature_change  = (viscous + crack) / (density * p.specific_heat) - p.gruneisen * temperature * trace_D * dt;
-  out->crack_rate          = Rate(p, speeds, Contract(out->deviator, out->deviator), out->mean_stress, c);
   out->substeps            = nsub;
 }
 

@@ -74,6 +74,8 @@ struct Parameters {
   PetscReal shear_modulus      = 0; // G = sum G_i
   PetscReal max_relaxation_rate = 0;
   PetscReal friction_factor = 0, threshold_factor = 0, growth_factor = 0, crack_scale_cubed = 0; // mu', K'/K_0m, K_1/K', a^3
+  PetscReal shear_fraction[kMaxElements] = {}, viscous_weight[kMaxElements] = {}; // G_i/G, 1/(2 G_i tau_i)
+  int       integer_exponent = 0; // m when it is a whole number in [1, 64] (the power by multiplication), else 0
   void      Derive();
 };
 
@@ -84,7 +86,6 @@ struct Result {
   PetscReal viscous_dissipation; // J/m^3 over the step
   PetscReal crack_dissipation;  // J/m^3 over the step
   PetscReal temperature_change; // K
-  PetscReal crack_rate;         // cdot at t_{n+1}, m/s
   int       substeps;
 };
 

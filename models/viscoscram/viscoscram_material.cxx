@@ -164,6 +164,7 @@ public:
     PetscCall(fields.Get(kViscousDissipation, &heat_v));
     PetscCall(fields.Get(kCrackDissipation, &heat_c));
     const PetscReal modulus = params.bulk_modulus + 4.0 / 3.0 * params.shear_modulus;
+    PetscInt        points = 0, substeps = 0, most_substeps = 0; // for -info
     for (PetscInt q = 0; q < mp.n; ++q) {
       if (mp.material[q] != id) continue;
       const PetscReal *L = mp.L + 9 * q;
@@ -192,8 +193,12 @@ public:
       heat_c[q] += r.crack_dissipation * mp.volume[q];
       mp.temperature[q] += r.temperature_change;
       mp.wave_speed[q] = std::sqrt(modulus / density);
+      ++points;
+      substeps += r.substeps;
+      most_substeps = PetscMax(most_substeps, (PetscInt)r.substeps);
     }
     PetscCall(fields.RestoreAll());
+    if (points) PetscCall(PetscInfo(nullptr, "Material %s (viscoscram): %" PetscInt_FMT " points, %.3g sub-steps per point on average, at most %" PetscInt_FMT "\n", Name(), points, (double)substeps / points, most_substeps));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
