@@ -10,6 +10,7 @@ PetscErrorCode LinearElasticCreate(Material **);
 PetscErrorCode NeoHookeanCreate(Material **);
 PetscErrorCode ElasticPlasticCreate(Material **);
 PetscErrorCode RigidCreate(Material **);
+PetscErrorCode ViscoScramCreate(Material **);
 PetscErrorCode SubModelRegistriesDestroy();
 
 static PetscFunctionList material_list  = nullptr;
@@ -31,6 +32,7 @@ PetscErrorCode MaterialRegisterAll()
   PetscCall(MaterialRegister("neo_hookean", NeoHookeanCreate));
   PetscCall(MaterialRegister("elastic_plastic", ElasticPlasticCreate));
   PetscCall(MaterialRegister("rigid", RigidCreate));
+  PetscCall(MaterialRegister("viscoscram", ViscoScramCreate));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -16,6 +16,8 @@
 //                       set exactly and L = (F_{n+1} - F_n) F_{n+1/2}^{-1} / dt. The CSV stress is
 //                       rotated back by R(theta)^T so it compares with the unrotated path.
 // The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad).
+// CSV columns: step, time, strain, stress, pressure, von Mises, temperature, F and the metal models'
+// state; then every other scalar field the material lists in OutputFields, by its name (e.g. crack_radius).
 #include "simulation.hpp"
 #include "options_check.hpp"
 #include "mpm/swarm_access.hpp"
@@ -23,6 +25,7 @@
 #include "expm.hpp"
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 namespace burst {
 
@@ -167,13 +170,24 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   if (!sim.rank) {
     out = std::fopen(o.output.c_str(), "w");
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open -point_output %s", o.output.c_str());
-    std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy\n");
+    std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy");
   }
   // model fields written when the material has them (it declares them in OutputFields)
   const char *optional[] = {"plastic_strain", "plastic_strain_rate", "porosity", "damage", "flow_stress", "unstable", "failed"};
   bool        present[7] = {false, false, false, false, false, false, false};
   for (int k = 0; k < 7; ++k)
     for (const OutputField &of : material.OutputFields()) present[k] = present[k] || std::string(of.name) == optional[k];
+  // the material's other scalar fields (e.g. a crack radius) follow as extra columns, by their names
+  std::vector<const char *> extra;
+  for (const OutputField &of : material.OutputFields()) {
+    bool listed = false;
+    for (const char *name : optional) listed = listed || std::string(of.name) == name;
+    if (!listed && of.bs == 1 && !of.is_int) extra.push_back(of.name);
+  }
+  if (out) {
+    for (const char *name : extra) std::fprintf(out, ",%s", name);
+    std::fprintf(out, "\n");
+  }
   PetscReal   lateral_rate    = 0;
   for (PetscInt step = 0; step <= o.steps; ++step) {
     if (step > 0) {
@@ -277,7 +291,13 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     dev.diagonal().array() += p;
     const PetscReal q = std::sqrt(1.5 * dev.squaredNorm());
     if (out)
-      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e\n", (int)step, (double)(step * dt), (double)(o.rate * step * dt), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)(o.rate * step * dt), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+    for (const char *name : extra) {
+      const PetscReal *v;
+      PetscCall(f.Get(name, &v));
+      if (out) std::fprintf(out, ",%.10e", (double)v[0]);
+    }
+    if (out) std::fprintf(out, "\n");
     if (step == o.steps) PetscCall(PetscPrintf(sim.comm, "Point driver: %s %s to strain %g at %g 1/s: stress xx %.6e Pa, von Mises %.6e Pa, plastic strain %.6g, temperature %.6g K; wrote %s\n", material.Name(), PathNames[o.path], (double)o.final_strain, (double)o.rate, (double)s0(0, 0), (double)q, (double)values[0], (double)T[0], o.output.c_str()));
     PetscCall(f.RestoreAll());
   }
