@@ -682,7 +682,10 @@ public:
   {
     std::vector<OutputField> out = {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
     if (regularization == Regularization::Nonlocal) out.push_back({kNonlocalStrain, 1, false});
-    if (regularization == Regularization::CrackBand) out.push_back({kSoftening, 1, false});
+    if (regularization == Regularization::CrackBand) {
+      out.push_back({kSoftening, 1, false});
+      out.push_back({kSofteningBits, 1, true}); // (also where src/mpm/fragments.cxx sees a criterion met)
+    }
     return out;
   }
 

@@ -200,24 +200,26 @@ static void GradyEnergies(PetscReal &tension, PetscReal &shear)
 static PetscReal GradyCount(PetscReal gamma, PetscReal velocity) { return 2 * PETSC_PI * std::cbrt(options.density * options.radius * velocity * velocity / (24 * gamma)); }
 
 // The mass-weighted mean radial velocity about the Grady axis of the counted materials, and the
-// number of their failed particles.
+// number of their particles where a failure criterion has been met: failed, or (crack band) softening
+// since a criterion, so the Grady velocity means the same with every regularisation.
 static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, PetscReal *failed_count)
 {
   SwarmAccess      fields(sim.swarm);
-  const PetscInt  *failed = nullptr, *material;
+  const PetscInt  *failed = nullptr, *softening = nullptr, *material;
   const PetscReal *x, *v, *m;
   PetscInt         n, dim = sim.grid.dim;
   PetscReal        local[3] = {0, 0, 0}, global[3];
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   if (SwarmHasModelField(sim, "failed")) PetscCall(fields.Get("failed", &failed));
+  if (SwarmHasModelField(sim, "softening_criteria")) PetscCall(fields.Get("softening_criteria", &softening));
   PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::mass, &m));
   for (PetscInt p = 0; p < n; ++p) {
     if (!options.Counts(material[p])) continue;
-    if (failed && failed[p]) local[2] += 1;
+    if ((failed && failed[p]) || (softening && softening[p])) local[2] += 1;
     PetscReal r = 0, vr = 0;
     for (PetscInt d = 0; d < 2; ++d) r += (x[dim * p + d] - options.center[d]) * (x[dim * p + d] - options.center[d]);
     r = std::sqrt(r);
@@ -233,7 +235,8 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Records the mean radial velocity of the material (mass weighted) when the first particle fails.
+// Records the mean radial velocity of the material (mass weighted) when a failure criterion is first
+// met anywhere (a particle fails, or starts softening under the crack band).
 PetscErrorCode FragmentsMonitor(Simulation &sim)
 {
   PetscReal velocity, failed;
