@@ -68,13 +68,13 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
       close(fd);
       if (!ok) {
         unlink(path.c_str());
-        why = "the lock file " + path + " cannot be written (" + std::strerror(errno) + ")";
+        why = "the folder cannot be written (permissions, a file of that name, or a full disk): the lock file " + path + " cannot be written (" + std::strerror(errno) + ")";
         return 2;
       }
       return 0;
     }
     if (errno != EEXIST) {
-      why = "the lock file " + path + " cannot be created (" + std::strerror(errno) + ")";
+      why = "the folder cannot be written (permissions, a file of that name, or a full disk): the lock file " + path + " cannot be created (" + std::strerror(errno) + ")";
       return 2;
     }
     // Someone holds it: alive or stale?

@@ -36,6 +36,8 @@
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace burst {
 
@@ -343,10 +345,15 @@ PetscErrorCode ConductHeat(Simulation &sim)
     const PetscReal needed = std::ceil(sim.dt / limit * (1 - 1e-12)); // inf or NaN for an unbounded input
     if (!(needed <= (PetscReal)heat.max_substeps)) {
       const Material &m = *sim.materials[which >= 0 ? which : 0];
+      auto            g = [](PetscReal v) { // C's %g (PETSc's adds a trailing point to whole numbers)
+        char buf[32];
+        std::snprintf(buf, sizeof(buf), "%g", (double)v);
+        return std::string(buf);
+      };
       SETERRQ(sim.comm, PETSC_ERR_USER_INPUT,
-              "Heat conduction, step %" PetscInt_FMT ": the time step %g s would need %g conduction sub-steps (explicit limit %g s at -mpm_heat_cfl %g), more than -mpm_heat_max_substeps %" PetscInt_FMT "; it is driven by material %s: -%s_thermal_conductivity %g W/(m K) with -%s_heat_capacity %g J/(kg K) (diffusivity %g m^2/s). "
+              "Heat conduction, step %" PetscInt_FMT ": the time step %s s would need %s conduction sub-steps (explicit limit %s s at -mpm_heat_cfl %s), more than -mpm_heat_max_substeps %" PetscInt_FMT "; it is driven by material %s: -%s_thermal_conductivity %s W/(m K) with -%s_heat_capacity %s J/(kg K) (diffusivity %s m^2/s). "
               "Lower the conductivity, use a smaller time step (-mpm_dt, -mpm_dt_max) or coarser grid, or raise -mpm_heat_max_substeps",
-              sim.step + 1, (double)sim.dt, (double)needed, (double)limit, (double)heat.cfl, heat.max_substeps, m.Name(), m.Name(), (double)heat.k[which >= 0 ? which : 0], m.Name(), (double)heat.c[which >= 0 ? which : 0], (double)alpha);
+              sim.step + 1, g(sim.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(), g(alpha).c_str());
     }
     const PetscInt nsub = PetscMax(1, (PetscInt)needed);
     heat.last_substeps  = nsub;
