@@ -32,7 +32,9 @@
 //   written_at       seconds since 1970 when written: "newest" means written last.
 // Pruning (-checkpoint_keep) counts only the current run id's checkpoints, newest written first, so
 // a restart from an older checkpoint prunes the abandoned later ones of its lineage, never the ones
-// it writes, and another run's checkpoints in the folder are never touched. A restart refuses a
+// it writes. Another run's checkpoints found in -output_dir at start-up are moved (renamed) to
+// output_dir/other_runs/<run id>/ with a note, so that this run can neither prune nor overwrite them
+// (same step numbers), and -restart on the folder sees one run. A restart refuses a
 // checkpoint whose checksum fails or whose physics options differ (each named with both values)
 // unless -restart_allow_option_change. Checkpoints without these attributes (format 1) are accepted
 // with a note: they cannot be verified, and the restart draws a new run id.
@@ -51,6 +53,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cctype>
 #include <map>
 #include <sstream>
@@ -803,23 +806,41 @@ PetscErrorCode ReadGas(Simulation &sim, PetscViewer viewer, const std::string &f
 } // namespace
 
 namespace {
-// Another run's checkpoints in this run's -output_dir are kept apart: never pruned, and -restart on
-// the folder asks which run to continue. Say so at start-up.
-PetscErrorCode NoteOtherRuns(const Simulation &sim)
+// Another run's checkpoints in this run's -output_dir are kept apart: moved (renamed, never copied
+// or removed) to output_dir/other_runs/<their run id>/ ("unidentified" for an older burst's or an
+// unreadable one) before this run writes anything that could take their names, with a note.
+PetscErrorCode MoveOtherRunsAside(const Simulation &sim)
 {
-  std::string note;
+  std::string note, error;
   PetscFunctionBeginUser;
   if (!sim.rank) {
-    std::vector<CheckpointInfo> others;
+    std::map<std::string, std::vector<CheckpointInfo>> others;
     for (const CheckpointInfo &c : ScanFolder(sim.output_dir))
-      if (!(c.identified && c.run_id == opts.run_id)) others.push_back(c);
-    std::sort(others.begin(), others.end(), [](const CheckpointInfo &a, const CheckpointInfo &b) { return a.step < b.step; });
-    if (!others.empty()) {
-      note = "Note: -output_dir " + sim.output_dir + " holds checkpoints of another run (";
-      for (size_t i = 0; i < others.size(); ++i) note += (i ? ", " : "") + BaseName(others[i].path) + (others[i].identified ? " of run " + others[i].run_id : std::string(others[i].readable ? " without a run id" : " unreadable"));
-      note += "): this run (" + opts.run_id + ") leaves them in place and prunes only its own; -restart on this folder will then ask for a file. Its particle and gas snapshots, monitor.csv and summary.json replace that run's\n";
+      if (!(c.identified && c.run_id == opts.run_id)) others[c.identified ? c.run_id : "unidentified"].push_back(c);
+    for (auto &kv : others) {
+      const std::string dir = sim.output_dir + "/other_runs/" + kv.first;
+      const std::string cmd = "mkdir -p '" + dir + "'";
+      if (std::system(cmd.c_str()) != 0) {
+        error = "Option -output_dir " + sim.output_dir + " holds checkpoints of another run (" + kv.first + ") and " + dir + " cannot be created to keep them apart; move them away or choose another -output_dir";
+        break;
+      }
+      std::sort(kv.second.begin(), kv.second.end(), [](const CheckpointInfo &a, const CheckpointInfo &b) { return a.step < b.step; });
+      std::string names;
+      for (const CheckpointInfo &c : kv.second) {
+        const std::string to = dir + "/" + BaseName(c.path);
+        struct stat       st;
+        if (stat(to.c_str(), &st) == 0 || std::rename(c.path.c_str(), to.c_str()) != 0) {
+          error = "Option -output_dir " + sim.output_dir + " holds " + BaseName(c.path) + " of another run (" + kv.first + "), and it cannot be moved to " + to + (stat(to.c_str(), &st) == 0 ? " (a file of that name exists)" : "") + "; move it away or choose another -output_dir";
+          break;
+        }
+        names += (names.empty() ? "" : ", ") + BaseName(c.path);
+      }
+      if (!error.empty()) break;
+      note += "Note: -output_dir " + sim.output_dir + " held checkpoints of another run (" + (kv.first == "unidentified" ? std::string("without a run id") : "run " + kv.first) + "): " + names + "; moved to " + dir + " (continue that run with -restart " + dir + "). This run (" + opts.run_id + ") writes its own snapshots, monitor.csv and summary.json in " + sim.output_dir + "\n";
     }
   }
+  PetscCall(BcastString(sim.comm, error));
+  PetscCheck(error.empty(), sim.comm, PETSC_ERR_FILE_WRITE, "%s", error.c_str());
   PetscCall(BcastString(sim.comm, note));
   PetscCall(PetscPrintf(sim.comm, "%s", note.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -957,7 +978,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   PetscViewer viewer;
   PetscFunctionBeginUser;
   if (opts.restart.empty()) {
-    PetscCall(NoteOtherRuns(sim));
+    PetscCall(MoveOtherRunsAside(sim));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscLogEventBegin(opts.ev_read, 0, 0, 0, 0));
@@ -1097,7 +1118,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     GasOutputSetRecords(gas_records);
   }
   sim.restarted = PETSC_TRUE;
-  PetscCall(NoteOtherRuns(sim));
+  PetscCall(MoveOtherRunsAside(sim));
   PetscCall(PetscLogEventEnd(opts.ev_read, 0, 0, 0, 0));
   PetscCall(PetscPrintf(sim.comm, "Restarted from %s (written on %" PetscInt_FMT " rank(s)): step %" PetscInt_FMT ", t = %g s, run %s\n", file.c_str(), saved_ranks, sim.step, (double)sim.time, opts.run_id.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
