@@ -18,7 +18,8 @@ subcommand runs real option files through burst and checks files and messages.
   legacy      a checkpoint without run id and checksum (an older burst's) is accepted with a note
   lock        one run per folder: --case live (a second run, also on 2 ranks, is refused naming the
               holder's host and pid; the first ends normally and removes the lock), stale (a dead
-              pid's lock on this host, an old lock of another host: taken over with a note), fresh
+              pid's lock on this host, a live pid running another program, an old lock of another
+              host: taken over with a note; a run stopped by an error removes its lock), fresh
               (another host's recent lock: refused), concurrent (two runs started at once: exactly one
               runs, the other is refused before writing)
   optionfile  --case self|pair|deep|nul|dangling: an option file that includes itself, two that
@@ -241,8 +242,12 @@ def lock(args):
         pid = dead_pid()
         write_lock(out, host, pid)
         p = burst(args, out, ["-max_steps", "2"])
-        check("a dead pid's lock on this host is taken over with a note", p.returncode == 0 and f"Note: taking over the stale lock {lock_file} of host {host}, pid {pid}: process {pid} no longer runs on this host" in p.text, p.text)
+        check("a dead pid's lock on this host is taken over with a note", p.returncode == 0 and f"Note: taking over the stale lock {lock_file} of host {host}, pid {pid}: process {pid} no longer runs burst on this host" in p.text, p.text)
         check("the lock is gone after the run", not os.path.exists(lock_file))
+        with open(write_lock(out, host, os.getpid()), "a") as f:  # a live pid that runs another program
+            f.write("program burst\n")
+        p = burst(args, out, ["-max_steps", "2"])
+        check("a lock whose pid now runs another program is taken over with a note", p.returncode == 0 and f"pid {os.getpid()}: process {os.getpid()} no longer runs burst on this host" in p.text, p.text)
         write_lock(out, "another-host.example", 4242, age=7200)
         p = burst(args, out, ["-max_steps", "2"])
         check("another host's lock untouched for 2 h is taken over with a note", p.returncode == 0 and "Note: taking over the stale lock" in p.text and "host another-host.example has not touched it for" in p.text, p.text)

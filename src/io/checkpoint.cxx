@@ -77,6 +77,7 @@ struct CheckpointOptions {
   PetscBool      allow_option_change = PETSC_FALSE;
   std::string    run_id;              // 16 hex digits, this run's lineage
   uint64_t       checksum = 0;        // this rank's part of the checkpoint being written
+  std::vector<std::string> written;   // names of the checkpoints this process wrote (rank 0)
   PetscLogDouble start = 0, last_write = 0, last_step_end = 0, write_seconds = 0;
   PetscLogEvent  ev_write = 0, ev_read = 0;
 } opts;
@@ -264,7 +265,8 @@ struct CheckpointInfo {
   std::string path;
   bool        readable = false, complete = false, identified = false; // identified: has run_id and checksum
   std::string run_id, checksum, physics;
-  double      written_at = 0;
+  double      written_at = 0;     // the attribute (seconds since 1970), 0 without it
+  bool        mine_now   = false; // written by this process
 };
 
 bool ReadStringAttribute(hid_t f, const char name[], std::string &value)
@@ -323,8 +325,6 @@ CheckpointInfo ReadInfo(const std::string &path, long step)
   QuietHDF5      quiet;
   info.path = path;
   info.step = step;
-  struct stat st;
-  if (stat(path.c_str(), &st) == 0) info.written_at = (double)st.st_mtime;
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) return info;
   info.readable = true;
@@ -353,13 +353,32 @@ herr_t SumDataset(hid_t group, const char *name, const LinkInfo *, void *op)
   SumVisit   *d  = (SumVisit *)op;
   const hid_t ds = H5Dopen2(group, name, H5P_DEFAULT);
   if (ds < 0) return 0; // a group
-  const hid_t    space = H5Dget_space(ds);
-  const hssize_t n     = H5Sget_simple_extent_npoints(space);
-  if (n < 0) d->error = std::string("dataset ") + name + " has no extent";
-  else if (n > 0) {
-    std::vector<double> buf((size_t)n);
-    if (H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf.data()) < 0) d->error = std::string("dataset ") + name + " cannot be read";
-    else d->sum += DatasetSum(name, 0, buf.data(), (PetscInt64)n);
+  const hid_t space = H5Dget_space(ds);
+  const int   rank  = H5Sget_simple_extent_ndims(space);
+  hsize_t     dims[H5S_MAX_RANK];
+  if (rank < 0 || H5Sget_simple_extent_dims(space, dims, nullptr) < 0) d->error = std::string("dataset ") + name + " has no extent";
+  else if (rank == 0 || H5Sget_simple_extent_npoints(space) > 0) {
+    // in blocks of whole rows of the first dimension, about 2^20 values each: rank 0 verifies a
+    // checkpoint of any size in bounded memory
+    hsize_t row = 1;
+    for (int k = 1; k < rank; ++k) row *= dims[k];
+    const hsize_t rows  = rank ? dims[0] : 1;
+    const hsize_t block = PetscMax((hsize_t)1, ((hsize_t)1 << 20) / PetscMax(row, (hsize_t)1));
+    std::vector<double> buf((size_t)(PetscMin(block, rows) * row));
+    for (hsize_t r0 = 0; r0 < rows && d->error.empty(); r0 += block) {
+      const hsize_t nr = PetscMin(block, rows - r0);
+      hsize_t       start[H5S_MAX_RANK] = {0}, count[H5S_MAX_RANK];
+      for (int k = 0; k < rank; ++k) count[k] = dims[k];
+      if (rank) {
+        start[0] = r0;
+        count[0] = nr;
+      }
+      const hid_t mem = H5Screate_simple(PetscMax(rank, 1), rank ? count : &nr, nullptr);
+      if (rank) H5Sselect_hyperslab(space, H5S_SELECT_SET, start, nullptr, count, nullptr);
+      if (H5Dread(ds, H5T_NATIVE_DOUBLE, mem, rank ? space : H5S_ALL, H5P_DEFAULT, buf.data()) < 0) d->error = std::string("dataset ") + name + " cannot be read";
+      else d->sum += DatasetSum(name, (PetscInt64)(r0 * row), buf.data(), (PetscInt64)(nr * row));
+      H5Sclose(mem);
+    }
   }
   H5Sclose(space);
   H5Dclose(ds);
@@ -396,9 +415,16 @@ std::vector<CheckpointInfo> ScanFolder(const std::string &folder)
 }
 
 // Newest written first (ties: the higher step).
+// Newest first: what this process wrote (by step), then by the written_at attribute, then by step
+// (the order for checkpoints without the attribute). A clock set back between a run and its restart
+// cannot make a run prune what it has just written.
 void SortNewestFirst(std::vector<CheckpointInfo> &v)
 {
-  std::sort(v.begin(), v.end(), [](const CheckpointInfo &a, const CheckpointInfo &b) { return a.written_at != b.written_at ? a.written_at > b.written_at : a.step > b.step; });
+  std::sort(v.begin(), v.end(), [](const CheckpointInfo &a, const CheckpointInfo &b) {
+    if (a.mine_now != b.mine_now) return a.mine_now;
+    if (!a.mine_now && a.written_at != b.written_at) return a.written_at > b.written_at;
+    return a.step > b.step;
+  });
 }
 
 std::string BaseName(const std::string &path) { return path.substr(path.find_last_of('/') + 1); }
@@ -636,8 +662,11 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
 void PruneCheckpoints(const Simulation &sim)
 {
   std::vector<CheckpointInfo> mine;
-  for (const CheckpointInfo &c : ScanFolder(sim.output_dir))
-    if (c.identified && c.run_id == opts.run_id) mine.push_back(c);
+  for (CheckpointInfo &c : ScanFolder(sim.output_dir))
+    if (c.identified && c.run_id == opts.run_id) {
+      c.mine_now = std::find(opts.written.begin(), opts.written.end(), BaseName(c.path)) != opts.written.end();
+      mine.push_back(c);
+    }
   SortNewestFirst(mine);
   for (size_t i = (size_t)opts.keep; i < mine.size(); ++i) {
     std::remove(mine[i].path.c_str());
@@ -963,7 +992,10 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
     PetscCall(PetscSleep(opts.debug_delay));
   }
   PetscCall(AtomicRename(sim.comm, tmp, path));
-  if (!sim.rank) PruneCheckpoints(sim);
+  if (!sim.rank) {
+    opts.written.push_back(BaseName(path));
+    PruneCheckpoints(sim);
+  }
   PetscCall(PetscLogEventEnd(opts.ev_write, 0, 0, 0, 0));
   PetscCall(PetscTime(&t1));
   opts.write_seconds = PetscMax(opts.write_seconds, t1 - t0);

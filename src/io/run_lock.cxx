@@ -1,11 +1,11 @@
 // One run per output folder (run_lock.hpp).
 //
 // The lock is output_dir/.burst.lock, created with O_CREAT | O_EXCL by rank 0 (atomic on local and
-// NFSv3+ file systems), holding "host <name>", "pid <pid>" and "started <time>". A second run into the
+// NFSv3+ file systems), holding "host <name>", "pid <pid>", "started <time>" and "program <name>". A second run into the
 // folder finds it and stops before writing anything there. The lock is stale, and is taken over with a
 // note, when
-//   - it names this host and its pid is not alive (or the pid now belongs to a program that is not
-//     burst: /proc/<pid>/cmdline), or
+//   - it names this host and its pid is not alive, or runs another program than the one that wrote
+//     the lock ("program", the executable's file name; /proc/<pid>/exe), or
 //   - it names another host and has not been touched for -output_lock_stale_time seconds (default
 //     3600; a live run touches it at least once a minute, so only a run stuck for an hour in one step
 //     or a dead one qualifies), or
@@ -40,14 +40,31 @@ std::string HostName()
   return name;
 }
 
-bool PidRunsBurst(long pid)
+// The file name of a process's executable ("" if unknown: no /proc, or not ours to read).
+std::string ProgramOf(const std::string &pid)
+{
+  char      buf[4096];
+  const ssize_t n = readlink(("/proc/" + pid + "/exe").c_str(), buf, sizeof(buf) - 1);
+  if (n <= 0) return "";
+  std::string exe(buf, (size_t)n);
+  const size_t del = exe.find(" (deleted)"); // a rebuilt executable
+  if (del != std::string::npos) exe.resize(del);
+  return exe.substr(exe.find_last_of('/') + 1);
+}
+
+// Alive: the pid exists and, where /proc tells, runs the program that wrote the lock (a pid reused
+// by another program after a crash does not hold the folder).
+bool PidRunsProgram(long pid, const std::string &program)
 {
   if (kill((pid_t)pid, 0) != 0 && errno != EPERM) return false;
+  if (program.empty()) return true;
+  const std::string theirs = ProgramOf(std::to_string(pid));
+  if (!theirs.empty()) return theirs == program;
   std::ifstream in("/proc/" + std::to_string(pid) + "/cmdline", std::ios::binary);
   if (!in) return true; // no /proc: trust the pid
   std::stringstream s;
   s << in.rdbuf();
-  return s.str().find("burst") != std::string::npos;
+  return s.str().find(program) != std::string::npos;
 }
 
 void ReleaseAtExit() { RunLockRelease(); }
@@ -63,7 +80,8 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
       const time_t now = time(nullptr);
       char      when[64];
       std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
-      const int n  = std::snprintf(text, sizeof(text), "host %s\npid %ld\nstarted %s\n", host.c_str(), (long)getpid(), when);
+      const std::string program = ProgramOf("self");
+      const int n  = std::snprintf(text, sizeof(text), "host %s\npid %ld\nstarted %s\nprogram %s\n", host.c_str(), (long)getpid(), when, program.empty() ? "burst" : program.c_str());
       const bool ok = write(fd, text, (size_t)n) == n;
       close(fd);
       if (!ok) {
@@ -79,7 +97,7 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
     }
     // Someone holds it: alive or stale?
     std::ifstream in(path);
-    std::string   key, their_host, started;
+    std::string   key, their_host, started, program;
     long          their_pid = -1;
     for (std::string line; std::getline(in, line);) {
       std::istringstream l(line);
@@ -87,6 +105,7 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
       if (key == "host") l >> their_host;
       else if (key == "pid") l >> their_pid;
       else if (key == "started") std::getline(l >> std::ws, started);
+      else if (key == "program") l >> program;
     }
     struct stat st;
     if (stat(path.c_str(), &st) != 0) continue; // gone meanwhile: try again
@@ -97,8 +116,8 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
       alive  = age < 60;
       reason = "it cannot be read and is " + std::to_string((long)age) + " s old";
     } else if (their_host == host) {
-      alive  = PidRunsBurst(their_pid);
-      reason = "process " + std::to_string(their_pid) + " no longer runs on this host";
+      alive  = PidRunsProgram(their_pid, program);
+      reason = "process " + std::to_string(their_pid) + " no longer runs " + (program.empty() ? std::string("burst") : program) + " on this host";
     } else {
       alive  = age < stale_seconds;
       reason = "host " + their_host + " has not touched it for " + std::to_string((long)age) + " s (-output_lock_stale_time " + std::to_string((long)stale_seconds) + ")";
