@@ -61,6 +61,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
   PetscCall(CheckpointSetUp(sim));
+  PetscCall(RunLockSetUp(sim)); // the lock itself is taken when the output folder is set up
   // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
   //    geometry objects that seed particles
   PetscCall(CreateMaterials(sim));

@@ -32,6 +32,7 @@ std::string lock_path;
 bool        held       = false;
 pid_t       holder_pid = 0;
 time_t      last_touch = 0;
+PetscReal   stale_seconds = 3600; // -output_lock_stale_time
 
 std::string HostName()
 {
@@ -135,14 +136,20 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
 }
 } // namespace
 
-PetscErrorCode RunLockAcquire(Simulation &sim)
+PetscErrorCode RunLockSetUp(Simulation &sim)
 {
-  PetscReal stale = 3600;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Output folder lock", "Output");
-  PetscCall(PetscOptionsReal("-output_lock_stale_time", "Age (s) after which another host's lock on -output_dir (output_dir/.burst.lock) counts as left by a dead run and is taken over, > 0 (a lock of this host is stale as soon as its process is gone)", "", stale, &stale, nullptr));
+  PetscCall(PetscOptionsReal("-output_lock_stale_time", "Age (s) after which another host's lock on -output_dir (output_dir/.burst.lock) counts as left by a dead run and is taken over, > 0 (a lock of this host is stale as soon as its process is gone)", "", stale_seconds, &stale_seconds, nullptr));
   PetscOptionsEnd();
-  PetscCall(CheckRange(sim.comm, "-output_lock_stale_time", stale, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(sim.comm, "-output_lock_stale_time", stale_seconds, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode RunLockAcquire(Simulation &sim)
+{
+  const PetscReal stale = stale_seconds;
+  PetscFunctionBeginUser;
   const std::string path = sim.output_dir + "/.burst.lock";
   std::string       why, note;
   PetscInt          status = 0;

@@ -4,6 +4,9 @@
 
 namespace burst {
 
+// Reads -output_lock_stale_time (also under -help). Call during set-up.
+PetscErrorCode RunLockSetUp(Simulation &sim);
+
 // Rank 0 creates output_dir/.burst.lock exclusively (host, pid, start time inside) and broadcasts the
 // outcome. A lock held by a live run stops this one with the holder's host and pid named; a stale
 // lock (its pid gone on this host, or another host's lock untouched for -output_lock_stale_time s) is
