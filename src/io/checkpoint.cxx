@@ -704,15 +704,17 @@ void ResolveRestartRoot(std::string &error, std::string &notes, CheckpointInfo &
   // one run only (unreadable files belong to nobody)
   std::vector<std::string>           runs;
   std::map<std::string, std::string> files;
+  std::map<std::string, int>         count;
   for (const CheckpointInfo &c : all) {
     if (!c.readable) continue;
     const std::string label = RunLabel(c);
     if (std::find(runs.begin(), runs.end(), label) == runs.end()) runs.push_back(label);
-    files[label] += (files[label].empty() ? "" : ", ") + BaseName(c.path);
+    if (++count[label] <= 4) files[label] += (files[label].empty() ? "" : ", ") + BaseName(c.path); // the newest four
   }
   if (runs.size() > 1) {
     error = "Option -restart " + arg + ": the folder holds the checkpoints of " + std::to_string(runs.size()) + " runs:";
-    for (const std::string &r : runs) error += " " + r + " (" + files[r] + ");";
+    for (size_t i = 0; i < runs.size() && i < 4; ++i) error += " " + runs[i] + " (" + files[runs[i]] + (count[runs[i]] > 4 ? " and " + std::to_string(count[runs[i]] - 4) + " older" : std::string()) + ");";
+    if (runs.size() > 4) error += " and " + std::to_string(runs.size() - 4) + " more runs;";
     error += " name the checkpoint file to continue from, e.g. -restart " + all[0].path;
     return;
   }
