@@ -323,7 +323,7 @@ PetscErrorCode CheckTemperatures(Simulation &sim, const HeatConduction &heat, Pe
   PetscCallMPI(MPI_Allreduce(&bad_id, &global_id, 1, MPIU_INT64, MPI_MAX, sim.comm));
   if (global_id < 0) PetscFunctionReturn(PETSC_SUCCESS);
   const std::string name = sim.materials[which >= 0 ? which : 0]->name_;
-  SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures", sim.step, global_id, heat.last_substeps, name.c_str(), name.c_str());
+  SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)", sim.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
 }
 } // namespace
 
