@@ -164,7 +164,14 @@ bool RunControlOption(const std::string &name)
 {
   // run length and stops, output, checkpoints, monitoring, diagnostics (fragment search, the Grady
   // estimate), the parallel layout (-grid_balance*, the grid DM's own options) and PETSc's own
-  static const char *const prefixes[] = {"output_", "checkpoint_", "monitor_", "restart", "log", "options_", "info", "history", "malloc", "viewer", "on_error", "progress", "help", "fp_trap", "no_signal_handler", "skip_petscrc", "mpi_", "check_pointer", "fragments", "grady", "grid_balance", "grid_da_", "grid_dm_", "dm_", "is_view", "sf_", "device_", "root_device", "default_device", "debugger", "start_in_debugger", "stop_for_debugger", "display", "error_output", "petsc", "version", "memory_view", "objects_dump", "get_total_flops", "tmp", "shared_tmp", "not_shared_tmp", "vecscatter", "use_gpu", "mca"};
+  static const char *const prefixes[] = {
+    "output_", "checkpoint_", "monitor_", "restart", "log", "options_", "progress", "help",                          // burst's run control
+    "fragments", "grady",                                                                                            // diagnostics
+    "grid_balance", "grid_da_", "grid_dm_", "dm_", "sf_", "vecscatter",                                              // parallel layout
+    "info", "history", "malloc", "viewer", "on_error", "fp_trap", "no_signal_handler", "skip_petscrc", "mpi_",       // PETSc's own
+    "check_pointer", "is_view", "device_", "root_device", "default_device", "debugger", "start_in_debugger",
+    "stop_for_debugger", "display", "error_output", "petsc", "version", "memory_view", "objects_dump", "get_total_flops",
+    "tmp", "shared_tmp", "not_shared_tmp", "use_gpu", "mca"};
   static const char *const exact[]    = {"max_steps", "final_time", "max_wall_time", "stop_kinetic_fraction", "mpm_energy_growth_limit", "scene", "mode"};
   for (const char *p : prefixes)
     if (name.compare(0, std::strlen(p), p) == 0) return true;

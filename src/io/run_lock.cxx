@@ -1,9 +1,9 @@
 // One run per output folder (run_lock.hpp).
 //
 // The lock is output_dir/.burst.lock, created with O_CREAT | O_EXCL by rank 0 (atomic on local and
-// NFSv3+ file systems), holding "host <name>", "pid <pid>", "started <time>" and "program <name>". A second run into the
-// folder finds it and stops before writing anything there. The lock is stale, and is taken over with a
-// note, when
+// NFSv3+ file systems), holding "host <name>", "pid <pid>", "started <time>" and "program <name>". A
+// second run into the folder finds it and stops before writing anything there. The lock is stale,
+// and is taken over with a note, when
 //   - it names this host and its pid is not alive, or runs another program than the one that wrote
 //     the lock ("program", the executable's file name; /proc/<pid>/exe), or
 //   - it names another host and has not been touched for -output_lock_stale_time seconds (default
