@@ -15,11 +15,15 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "mpm/analytic.hpp"
 #include "util.hpp"
 #include "options_check.hpp"
+#include "options_files.hpp"
 #include "io/checkpoint.hpp"
+#include "io/run_lock.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include "../models/burn/burn.hpp"
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <new>
 
@@ -59,6 +63,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   // 1. Run control and the background grid
   PetscCall(ReadRunOptions(sim));
   PetscCall(CheckpointSetUp(sim));
+  PetscCall(RunLockSetUp(sim)); // the lock itself is taken when the output folder is set up
   // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
   //    geometry objects that seed particles
   PetscCall(CreateMaterials(sim));
@@ -111,6 +116,7 @@ static PetscErrorCode View(Simulation &sim)
   PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1], g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.final_time));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.total_particles));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  run %s%s\n", CheckpointRunId().c_str(), sim.restarted ? " (continued from its checkpoint)" : ""));
   for (auto &m : sim.materials) PetscCall(m->View(viewer));
   if (sim.ice) PetscCall(IceView(*sim.ice, viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -171,45 +177,76 @@ static PetscErrorCode Run(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// Before PetscInitialize: an -options_file chain that PETSc's reader would crash on (a cycle) or read
+// wrongly (a NUL byte, a dangling -options_file) stops here with the file, line and chain named.
+// MPI is not up yet: the message comes from the first process of the job only (as PETSc's would).
+static int RefuseOptionFiles(int argc, char **argv)
+{
+  const std::string error = CheckOptionFiles(argc, argv);
+  if (error.empty()) return 0;
+  const char *rank = nullptr;
+  for (const char *v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
+    if (!rank) rank = std::getenv(v);
+  if (!rank || !std::strcmp(rank, "0"))
+    std::fprintf(stderr, "[0]PETSC ERROR: --------------------- Error Message --------------------------------------------------------------\n"
+                         "[0]PETSC ERROR: %s\n", error.c_str());
+  return PETSC_ERR_USER_INPUT;
+}
+
+// One run, between PetscInitialize and PetscFinalize.
+static const char *main_phase = "set-up"; // what main's exception handler names
+
+static PetscErrorCode Main(Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
+  PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
+  PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
+  PetscCall(OptionsCheckBegin(sim.comm)); // records what set-up reads, for the unused-option check
+  int mode = 0;
+  PetscOptionsBegin(sim.comm, "", "burst", "Mode");
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
+  PetscOptionsEnd();
+  PetscCall(RegisterLogging(sim));
+  if (mode == 1) {
+    main_phase = "the point driver";
+    PetscCall(RunPointDriver(sim));
+  } else {
+    PetscCall(SetUp(sim));
+    if (!sim.help) {
+      PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
+      PetscCall(View(sim));
+      main_phase = "the run";
+      PetscCall(Run(sim));
+      RunLockRelease(); // the run is complete: the folder is free
+    }
+    main_phase = "clean-up";
+    PetscCall(CouplingDestroy(sim));
+    PetscCall(IceDestroy(&sim.ice));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 int main(int argc, char **argv)
 {
+  if (int rc = RefuseOptionFiles(argc, argv)) return rc;
   PetscCall(PetscInitialize(&argc, &argv, nullptr, help));
-  const char *phase = "set-up";
   try { // an exception our code lets through is said, with the phase, instead of std::terminate
-    Simulation sim;
-    PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
-    PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
-    PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
-    PetscCall(OptionsCheckBegin(sim.comm)); // records what set-up reads, for the unused-option check
-    int mode = 0;
-    PetscOptionsBegin(sim.comm, "", "burst", "Mode");
-    PetscCall(OptionsChoice(PetscOptionsObject, "-mode", "What to run: mpm (a scene) or point (one material point through a prescribed path)", ModeNames, 2, &mode, nullptr));
-    PetscOptionsEnd();
-    PetscCall(RegisterLogging(sim));
-    if (mode == 1) {
-      phase = "the point driver";
-      PetscCall(RunPointDriver(sim));
-    } else {
-      PetscCall(SetUp(sim));
-      if (!sim.help) {
-        PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
-        PetscCall(View(sim));
-        phase = "the run";
-        PetscCall(Run(sim));
-      }
-      phase = "clean-up";
-      PetscCall(CouplingDestroy(sim));
-      PetscCall(IceDestroy(&sim.ice));
-    }
+    Simulation           sim;
+    const PetscErrorCode ierr = Main(sim);
+    if (ierr) RunLockRelease(); // an error reaching main aborts (no exit handlers): free the output folder first
+    PetscCall(ierr);
   } catch (const std::bad_alloc &) {
     PetscMPIInt rank = 0;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    std::fprintf(stderr, "burst: out of memory on rank %d during %s (std::bad_alloc); the set-up's estimate did not foresee it: give fewer particles or cells, more ranks, or a smaller -max_memory so that the set-up refuses such a run\n", (int)rank, phase);
+    RunLockRelease();
+    std::fprintf(stderr, "burst: out of memory on rank %d during %s (std::bad_alloc); the set-up's estimate did not foresee it: give fewer particles or cells, more ranks, or a smaller -max_memory so that the set-up refuses such a run\n", (int)rank, main_phase);
     MPI_Abort(PETSC_COMM_WORLD, PETSC_ERR_MEM);
   } catch (const std::exception &e) {
     PetscMPIInt rank = 0;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-    std::fprintf(stderr, "burst: unexpected exception on rank %d during %s: %s\n", (int)rank, phase, e.what());
+    RunLockRelease();
+    std::fprintf(stderr, "burst: unexpected exception on rank %d during %s: %s\n", (int)rank, main_phase, e.what());
     MPI_Abort(PETSC_COMM_WORLD, PETSC_ERR_LIB);
   }
   PetscCall(MaterialRegistryDestroy());

@@ -10,6 +10,7 @@
 // and are replaced atomically too.
 #include "../simulation.hpp"
 #include "grid_output.hpp"
+#include "run_lock.hpp"
 #include <petscviewerhdf5.h>
 #include <array>
 #include <cstdio>
@@ -73,6 +74,8 @@ PetscErrorCode OutputSetUp(Simulation &sim)
       PetscCheck(std::system(cmd.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not create -output_dir %s", sim.output_dir.c_str());
     }
   }
+  // One run per folder: a second run into it stops here, before it writes anything there.
+  PetscCall(RunLockAcquire(sim));
   // An output folder that cannot be written is an error now, not after hours of computing.
   PetscInt ok = 1;
   if (!sim.rank) {

@@ -36,6 +36,8 @@
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 namespace burst {
 
@@ -44,6 +46,7 @@ struct HeatConduction {
   Vec                    global = nullptr, local = nullptr, scratch = nullptr;
   std::vector<PetscReal> k, c;                      // per material id; k < 0: does not conduct (rigid)
   PetscReal              cfl = 0.5;                 // fraction of the explicit stability limit
+  PetscInt               max_substeps = 10000;      // refuse a step that would need more sub-steps
   PetscBool              fixed[3][2] = {};          // fixed-temperature faces
   PetscReal              face_T[3][2] = {};         // K
   PetscInt               last_substeps = 0;
@@ -75,11 +78,13 @@ PetscErrorCode HeatConductionSetUp(Simulation &sim)
   PetscOptionsBegin(sim.comm, "", "Heat conduction in the solids", "Heat");
   PetscCall(PetscOptionsBool("-mpm_heat_conduction", "Conduct heat between particles (explicit grid step at the end of each step, needs -<mat>_thermal_conductivity and -<mat>_heat_capacity); false: adiabatic", "", on, &on, nullptr));
   PetscCall(PetscOptionsReal("-mpm_heat_cfl", "Conduction sub-step as a fraction of the explicit limit 1/(2 alpha sum 1/h^2), in (0, 1]", "", heat->cfl, &heat->cfl, nullptr));
+  PetscCall(PetscOptionsInt("-mpm_heat_max_substeps", "Most conduction sub-steps in one time step, >= 1: a step that needs more (a high -<mat>_thermal_conductivity, a fine grid, a long -mpm_dt) stops the run with the count it would need", "", heat->max_substeps, &heat->max_substeps, nullptr));
   for (PetscInt d = 0; d < sim.grid.dim; ++d)
     for (int s = 0; s < 2; ++s) PetscCall(PetscOptionsReal(face_opt[d][s], "Fixed temperature (K) held on this domain face by the conduction step; unset: insulated (zero flux)", "", heat->face_T[d][s], &heat->face_T[d][s], &heat->fixed[d][s]));
   PetscOptionsEnd();
   if (!on && !sim.help) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(CheckRange(sim.comm, "-mpm_heat_cfl", heat->cfl, 0, 1, PETSC_TRUE));
+  PetscCheck(heat->max_substeps >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_heat_max_substeps = %" PetscInt_FMT " is out of range: it must be >= 1", heat->max_substeps);
   for (PetscInt d = 0; d < sim.grid.dim; ++d)
     for (int s = 0; s < 2; ++s)
       if (heat->fixed[d][s]) PetscCall(CheckRange(sim.comm, face_opt[d][s], heat->face_T[d][s], 0, PETSC_MAX_REAL, PETSC_TRUE));
@@ -191,13 +196,15 @@ struct HeatKernel {
   }
 };
 
-// Largest diffusivity k V / (m c) over the conducting particles (global), m^2/s.
-PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, PetscReal *alpha)
+// Largest diffusivity k V / (m c) over the conducting particles (global), m^2/s, and the material
+// that has it (-1: none conducts).
+PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, PetscReal *alpha, PetscInt *which)
 {
   PetscInt         n;
   const PetscReal *m, *vol;
   const PetscInt  *mat;
   PetscReal        local = 0;
+  PetscInt         local_mat = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
@@ -206,10 +213,18 @@ PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, Petsc
   PetscCall(fields.Get(field::material, &mat));
   for (PetscInt p = 0; p < n; ++p) {
     const PetscReal k = heat.k[mat[p]];
-    if (k > 0 && m[p] > 0) local = PetscMax(local, k * vol[p] / (m[p] * heat.c[mat[p]]));
+    if (k > 0 && m[p] > 0) {
+      const PetscReal a = k * vol[p] / (m[p] * heat.c[mat[p]]);
+      if (!(a <= local)) { // (a NaN or inf diffusivity wins)
+        local     = std::isnan(a) ? PETSC_INFINITY : a;
+        local_mat = mat[p];
+      }
+    }
   }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(&local, alpha, 1, MPIU_REAL, MPI_MAX, sim.comm));
+  PetscInt mine = local == *alpha ? local_mat : -1;
+  PetscCallMPI(MPI_Allreduce(&mine, which, 1, MPIU_INT, MPI_MAX, sim.comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -284,8 +299,37 @@ PetscErrorCode HeatSubStep(Simulation &sim, HeatConduction &heat, PetscReal dt)
   PetscCall(VecRestoreArrayRead(heat.local, &in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+// After the sub-steps: every conducting particle's temperature is a finite number.
+PetscErrorCode CheckTemperatures(Simulation &sim, const HeatConduction &heat, PetscInt which)
+{
+  PetscInt         n, bad = -1;
+  const PetscReal *T;
+  const PetscInt  *mat;
+  PetscInt64      *pid;
+  PetscInt64       bad_id = -1, global_id;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::material, &mat));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  for (PetscInt p = 0; p < n && bad < 0; ++p)
+    if (heat.k[mat[p]] >= 0 && !std::isfinite(T[p])) {
+      bad    = mat[p];
+      bad_id = pid[p];
+    }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(&bad_id, &global_id, 1, MPIU_INT64, MPI_MAX, sim.comm));
+  if (global_id < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  const std::string name = sim.materials[which >= 0 ? which : 0]->name_;
+  SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)", sim.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
+}
 } // namespace
 
+// The sub-step count is computed before any sub-step runs and bounded by -mpm_heat_max_substeps,
+// so that one time step's conduction work is bounded: a stop signal (SIGTERM/SIGUSR1) or the
+// wall-clock budget, acted on between time steps, then waits at most that many sub-steps.
 PetscErrorCode ConductHeat(Simulation &sim)
 {
   PetscFunctionBeginUser;
@@ -293,13 +337,28 @@ PetscErrorCode ConductHeat(Simulation &sim)
   HeatConduction &heat = *sim.heat;
   PetscCall(PetscLogEventBegin(heat.event, 0, 0, 0, 0));
   PetscReal alpha, inv_h2 = 0;
-  PetscCall(MaxDiffusivity(sim, heat, &alpha));
+  PetscInt  which;
+  PetscCall(MaxDiffusivity(sim, heat, &alpha, &which));
   for (PetscInt d = 0; d < sim.grid.dim; ++d) inv_h2 += 1.0 / (sim.grid.h[d] * sim.grid.h[d]);
   if (alpha > 0 && sim.dt > 0) {
-    const PetscReal limit = heat.cfl / (2 * alpha * inv_h2);
-    const PetscInt  nsub  = (PetscInt)PetscMax(1, (PetscInt)std::ceil(sim.dt / limit * (1 - 1e-12)));
-    heat.last_substeps    = nsub;
+    const PetscReal limit  = heat.cfl / (2 * alpha * inv_h2);
+    const PetscReal needed = std::ceil(sim.dt / limit * (1 - 1e-12)); // inf or NaN for an unbounded input
+    if (!(needed <= (PetscReal)heat.max_substeps)) {
+      const Material &m = *sim.materials[which >= 0 ? which : 0];
+      auto            g = [](PetscReal v) { // C's %g (PETSc's adds a trailing point to whole numbers)
+        char buf[32];
+        std::snprintf(buf, sizeof(buf), "%g", (double)v);
+        return std::string(buf);
+      };
+      SETERRQ(sim.comm, PETSC_ERR_USER_INPUT,
+              "Heat conduction, step %" PetscInt_FMT ": the time step %s s would need %s conduction sub-steps (explicit limit %s s at -mpm_heat_cfl %s), more than -mpm_heat_max_substeps %" PetscInt_FMT "; it is driven by material %s: -%s_thermal_conductivity %s W/(m K) with -%s_heat_capacity %s J/(kg K) (diffusivity %s m^2/s). "
+              "Lower the conductivity, use a smaller time step (-mpm_dt, -mpm_dt_max) or coarser grid, or raise -mpm_heat_max_substeps",
+              sim.step + 1, g(sim.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(), g(alpha).c_str());
+    }
+    const PetscInt nsub = PetscMax(1, (PetscInt)needed);
+    heat.last_substeps  = nsub;
     for (PetscInt s = 0; s < nsub; ++s) PetscCall(HeatSubStep(sim, heat, sim.dt / nsub));
+    PetscCall(CheckTemperatures(sim, heat, which));
   }
   PetscCall(PetscLogEventEnd(heat.event, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -60,8 +60,9 @@ bool Geometry::Contains(const PetscReal x[]) const
   if (dim == 3 && (x[2] < lower[2] || x[2] > upper[2])) return false;
   if (angle_range[1] - angle_range[0] < 360) {
     PetscReal angle = std::atan2(x[1] - center[1], x[0] - center[0]) * 180.0 / PETSC_PI;
-    while (angle < angle_range[0]) angle += 360;
-    while (angle >= angle_range[0] + 360) angle -= 360;
+    // into [start, start + 360) in one step (a loop of +-360 would take ~start/360 turns: a hang for a
+    // start of 1e17 degrees, which the range check start < end <= start + 360 lets through)
+    angle = angle_range[0] + std::fmod(std::fmod(angle - angle_range[0], 360.0) + 360.0, 360.0);
     if (angle > angle_range[1]) return false;
   }
   return true;
