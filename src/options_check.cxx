@@ -317,7 +317,10 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     for (const std::string &c : candidates) nearest = std::min(nearest, EditDistance(u, c));
     std::string selector;
     for (const std::string &c : known) {
-      const size_t cut = c.size() >= 6 && c.compare(c.size() - 5, 5, "_type") == 0 ? c.size() - 4 : (c.size() >= 7 && c.compare(c.size() - 6, 6, "_types") == 0 ? c.size() - 5 : 0);
+      // selectors: -<prefix>_type(s) of a sub-model, -<material>_model of a material (a scene that
+      // switches its charge to another model leaves the first model's parameters unread)
+      const auto   ends = [&](const char *suffix) { const size_t k = std::strlen(suffix); return c.size() > k && c.compare(c.size() - k, k, suffix) == 0; };
+      const size_t cut  = ends("_type") ? c.size() - 4 : ends("_types") ? c.size() - 5 : ends("_model") ? c.size() - 5 : 0;
       if (cut && u.size() > cut && u.compare(0, cut, c, 0, cut) == 0 && c.size() > selector.size()) selector = c;
     }
     if (!selector.empty() && nearest > 2) {
