@@ -216,6 +216,7 @@ static PetscErrorCode Main(Simulation &sim)
     if (!sim.help) {
       PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, false))); // before the first step: a misspelled option must not cost a run
       PetscCall(View(sim));
+      PetscCall(OutputPushWriteErrorHandler(sim));
       main_phase = "the run";
       PetscCall(Run(sim));
       RunLockRelease(); // the run is complete: the folder is free

@@ -297,6 +297,8 @@ PetscErrorCode RunPointDriver(Simulation &sim);
 
 // Output and diagnostics (src/io/)
 PetscErrorCode OutputSetUp(Simulation &sim);
+// From here on a failed write names the partial files it removes and a full disk (src/io/output.cxx).
+PetscErrorCode OutputPushWriteErrorHandler(const Simulation &sim);
 PetscErrorCode WriteOutput(Simulation &sim);
 PetscErrorCode WriteGasOutput(Simulation &sim); // gas cells (gas_NNNNNN.h5, gas.xmf)
 PetscErrorCode MonitorSetUp(Simulation &sim);

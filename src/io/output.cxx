@@ -16,7 +16,12 @@
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <cerrno>
+#include <cstring>
+#include <dirent.h>
 #include <sys/stat.h>
+#include <sys/statvfs.h>
+#include <unistd.h>
 
 namespace burst {
 
@@ -61,6 +66,46 @@ PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::st
   PetscCallMPI(MPI_Comm_rank(comm, &rank));
   if (!rank) PetscCheck(std::rename(tmp.c_str(), final_name.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s to %s", tmp.c_str(), final_name.c_str());
   PetscCallMPI(MPI_Barrier(comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// A write that fails (HDF5, a rename, a text file) stops the run with PETSc's message; this handler
+// adds what the user needs: the files that were being written (the *.tmp of -output_dir, removed so
+// that no partial file is left) and whether the disk is full, then hands over to PETSc's traceback.
+namespace {
+std::string disk_full_dir; // -output_dir, set by OutputPushWriteErrorHandler
+PetscErrorCode WriteErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
+{
+  const bool write_error = p == PETSC_ERROR_INITIAL && (n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FILE_OPEN || (n == PETSC_ERR_LIB && mess && std::strstr(mess, "HDF5")));
+  if (write_error && !disk_full_dir.empty()) {
+    const int      saved = errno;
+    struct statvfs fs;
+    std::string    partial;
+    if (DIR *d = opendir(disk_full_dir.c_str())) {
+      while (dirent *e = readdir(d)) {
+        const std::string name = e->d_name;
+        if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0) {
+          partial += " " + name;
+          unlink((disk_full_dir + "/" + name).c_str()); // (each rank tries; the first one removes it)
+        }
+      }
+      closedir(d);
+    }
+    const bool   stat_ok = statvfs(disk_full_dir.c_str(), &fs) == 0;
+    const double free_b  = stat_ok ? (double)fs.f_bavail * (double)fs.f_frsize : -1;
+    const bool   full    = saved == ENOSPC || (stat_ok && free_b < 1 << 20);
+    std::fprintf(stderr, "burst: writing to %s failed%s%s%s%s\n", disk_full_dir.c_str(), partial.empty() ? "" : " (partial files removed:", partial.c_str(), partial.empty() ? "" : ")",
+                 full ? (std::string(": the disk is full (") + std::to_string((long long)free_b) + " bytes free); free space or give another -output_dir").c_str() : (saved ? (std::string(": ") + std::strerror(saved)).c_str() : ""));
+  }
+  return PetscTraceBackErrorHandler(comm, line, fun, file, n, p, mess, ctx);
+}
+} // namespace
+
+PetscErrorCode OutputPushWriteErrorHandler(const Simulation &sim)
+{
+  PetscFunctionBeginUser;
+  disk_full_dir = sim.output_dir;
+  PetscCall(PetscPushErrorHandler(WriteErrorHandler, nullptr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
