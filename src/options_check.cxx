@@ -335,14 +335,17 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     if (near.empty()) PetscCall(PetscPrintf(comm, "Unknown option -%s; nothing reads it and no known option is close\n", u.c_str()));
     else PetscCall(PetscPrintf(comm, "Unknown option -%s; did you mean %s?\n", u.c_str(), near.c_str()));
   }
-  unused = errors;
   PetscCall(PetscOptionsLeftRestore(nullptr, &n, &names, &values));
-  if (unused.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  // rank 0 decides for all: the names the components queried are recorded from the help text, which
+  // only rank 0 prints, so another rank would take a selected model's alternatives for typos
+  PetscMPIInt count = (PetscMPIInt)errors.size();
+  PetscCallMPI(MPI_Bcast(&count, 1, MPI_INT, 0, comm));
+  if (!count) PetscFunctionReturn(PETSC_SUCCESS);
   if (allow) {
-    PetscCall(PetscPrintf(comm, "WARNING: %zu option(s) above are not read by this run (-options_allow_unused); continuing\n", unused.size()));
+    PetscCall(PetscPrintf(comm, "WARNING: %d option(s) above are not read by this run (-options_allow_unused); continuing\n", (int)count));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%zu option(s) given but never read (listed above): correct or remove them, or pass -options_allow_unused to run anyway", unused.size());
+  SETERRQ(comm, PETSC_ERR_USER_INPUT, "%d option(s) given but never read (listed above): correct or remove them, or pass -options_allow_unused to run anyway", (int)count);
 }
 
 } // namespace burst
