@@ -231,6 +231,30 @@ std::vector<OptionsFeature> RunFeatures(const Simulation &sim, bool point_mode)
   };
 }
 
+// Whether option `name` (without the dash) belongs to feature f.
+static bool Matches(const OptionsFeature &f, const std::string &name)
+{
+  return name.compare(0, f.prefix.size(), f.prefix) == 0 && name.find(f.contains) != std::string::npos && name.size() >= f.suffix.size() && name.compare(name.size() - f.suffix.size(), f.suffix.size(), f.suffix) == 0;
+}
+
+// The names (without the dash) of every option given: command line, option files, PETSC_OPTIONS.
+static PetscErrorCode GivenOptionNames(std::vector<std::string> &names)
+{
+  char *all;
+  PetscFunctionBeginUser;
+  PetscCall(PetscOptionsGetAll(nullptr, &all));
+  const std::string s(all);
+  PetscCall(PetscFree(all));
+  for (size_t pos = 0; pos < s.size();) { // "-name value -name ..."
+    const size_t start = s.find_first_not_of(' ', pos);
+    if (start == std::string::npos) break;
+    const size_t end = std::min(s.find(' ', start), s.size());
+    if (s[start] == '-' && end > start + 1 && std::isalpha((unsigned char)s[start + 1])) names.push_back(s.substr(start + 1, end - start - 1));
+    pos = end;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> &features)
 {
   PetscBool allow = PETSC_FALSE;
@@ -256,7 +280,7 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     const OptionsFeature *off = nullptr;
     for (const OptionsFeature &f : features) {
       if (f.read_when_off) continue; // read in every run: what nothing read is a typo
-      const bool match = name.compare(0, f.prefix.size(), f.prefix) == 0 && name.find(f.contains) != std::string::npos && name.size() >= f.suffix.size() && name.compare(name.size() - f.suffix.size(), f.suffix.size(), f.suffix) == 0;
+      const bool match = Matches(f, name);
       if (match && !f.on) off = &f;
       if (match) break;
     }
@@ -264,50 +288,20 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     else unused.push_back(name);
   }
   // Options that were read but do nothing in this run (read_when_off features that are off)
-  {
-    char *all;
-    PetscCall(PetscOptionsGetAll(nullptr, &all));
-    const std::string s(all);
-    PetscCall(PetscFree(all));
-    std::set<std::string> noted;
-    size_t                pos = 0;
-    while (pos < s.size()) { // "-name value -name ..."
-      const size_t start = s.find_first_not_of(' ', pos);
-      if (start == std::string::npos) break;
-      const size_t end = std::min(s.find(' ', start), s.size());
-      if (s[start] == '-' && end > start + 1 && std::isalpha((unsigned char)s[start + 1])) {
-        const std::string name = s.substr(start + 1, end - start - 1);
-        for (const OptionsFeature &f : features) {
-          if (!f.read_when_off || f.on || noted.count(name) || std::find(unused.begin(), unused.end(), name) != unused.end()) continue;
-          if (name.compare(0, f.prefix.size(), f.prefix) == 0 && name.find(f.contains) != std::string::npos && name.size() >= f.suffix.size() && name.compare(name.size() - f.suffix.size(), f.suffix.size(), f.suffix) == 0) {
-            noted.insert(name);
-            PetscCall(PetscPrintf(comm, "Note: option -%s does nothing without %s, which is off in this run; ignored\n", name.c_str(), f.needs.c_str()));
-          }
-        }
-      }
-      pos = end;
+  std::vector<std::string> given;
+  PetscCall(GivenOptionNames(given));
+  std::set<std::string> noted;
+  for (const std::string &name : given)
+    for (const OptionsFeature &f : features) {
+      if (!f.read_when_off || f.on || noted.count(name) || std::find(unused.begin(), unused.end(), name) != unused.end() || !Matches(f, name)) continue;
+      noted.insert(name);
+      PetscCall(PetscPrintf(comm, "Note: option -%s does nothing without %s, which is off in this run; ignored\n", name.c_str(), f.needs.c_str()));
     }
-  }
   // Candidates: every name a component queried, and every option given that something read.
   std::set<std::string> candidates = known;
   for (const char *f : finalize_options) candidates.insert(f);
-  {
-    char *all;
-    PetscCall(PetscOptionsGetAll(nullptr, &all));
-    const std::string s(all);
-    PetscCall(PetscFree(all));
-    size_t pos = 0;
-    while (pos < s.size()) { // "-name value -name ..."
-      const size_t start = s.find_first_not_of(' ', pos);
-      if (start == std::string::npos) break;
-      const size_t end = std::min(s.find(' ', start), s.size());
-      if (s[start] == '-' && end > start + 1 && std::isalpha((unsigned char)s[start + 1])) {
-        const std::string name = s.substr(start + 1, end - start - 1);
-        if (std::find(unused.begin(), unused.end(), name) == unused.end()) candidates.insert(name);
-      }
-      pos = end;
-    }
-  }
+  for (const std::string &name : given)
+    if (std::find(unused.begin(), unused.end(), name) == unused.end()) candidates.insert(name);
   // A parameter of a sub-model that this run does not select (material files carry the parameters
   // of alternatives: -steel_eos_C0 with -steel_eos_type hypoelastic) is noted, naming the selector,
   // unless a known name is within 2 edits (then it is taken for a typo).
