@@ -39,6 +39,8 @@ import time
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
 RING = "options/scenes/ring2d.opts"
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from verify_checkpoint import wait_for  # noqa: E402  (a line in a file, or the process ended)
 
 
 def fresh(path):
@@ -195,15 +197,6 @@ def legacy(args):
     check.finish()
 
 
-def wait_for(path, text, proc, seconds=120):
-    end = time.time() + seconds
-    while time.time() < end:
-        if proc.poll() is not None:
-            return False
-        if os.path.exists(path) and text in open(path).read():
-            return True
-        time.sleep(0.05)
-    return False
 
 
 def dead_pid():

@@ -30,6 +30,8 @@ from scipy.integrate import solve_ivp
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DECK = os.path.join(ROOT, "options/materials/pbx9501_viscoscram.opts")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import verify_point  # noqa: E402  (the point driver's runner and the checks)
 
 # the PBX 9501 set (options/materials/pbx9501_viscoscram.opts)
 G = np.array([3.5e8, 1.739e8, 5.212e8, 9.085e8, 6.875e8])
@@ -43,24 +45,10 @@ RHO, CV = 1840.0, 996.0
 
 
 def point(burst, options, out):
-    cmd = [burst, "-mode", "point", "-options_file", DECK, *options, "-point_output", out]
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-    if proc.returncode:
-        sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
-        raise SystemExit(f"FAIL: {' '.join(cmd)}")
-    return np.genfromtxt(out, delimiter=",", names=True)
+    return verify_point.point(burst, ["-options_file", DECK, *options], out)
 
 
-def check(name, value, tol, failures):
-    ok = value <= tol
-    print(f"  {name}: {value:.3e} (tol {tol:.3e}) {'OK' if ok else 'FAIL'}")
-    if not ok:
-        failures.append(name)
-
-
-def finish(test, failures):
-    print(f"{test}: {'FAIL (' + ', '.join(failures) + ')' if failures else 'OK'}")
-    sys.exit(1 if failures else 0)
+check, finish = verify_point.check, verify_point.finish
 
 
 def crack_speed(dev_rate_norm, tension, vmax):
