@@ -5,22 +5,22 @@
 // loops over the particles whose material id matches, so parameter lookups, virtual dispatch and
 // model choices are hoisted out of the particle loop (STYLE.md 2.3).
 //
-// A model that needs per-particle state registers it as DMSwarm fields in RegisterFields and finds
-// it again through MaterialPointFields::swarm (by the name it registered), so a new model brings its
-// own state without touching the core.
+// A model that needs per-particle state declares it in StateFields (name, block size, type); the
+// core registers the fields and hands the model their arrays in MaterialPointFields::state
+// (models/material_state.hpp), so a new model brings its own state without touching the core and
+// never sees the swarm or the grid.
 //
 // Adding a model: write one file models/<family>/<name>.cxx with a class derived from Material and a
 // create function, then add one line to models/registry.cxx.
 #pragma once
-#include "../src/petsc_compat.hpp"
-#include <petscdm.h>
-#include <petscdmswarm.h>
+#include "material_state.hpp"
+#include <petscviewer.h>
 #include <string>
 #include <vector>
 
 namespace burst {
 
-// Views of the swarm fields that a stress update may read or write for the local particles.
+// Views of the particle fields that a model may read or write for the local particles.
 // Tensors are row-major 3x3 in every dimension: in 2-D the zz entries carry plane strain.
 struct MaterialPointFields {
   PetscInt         n        = 0;       // local particle count
@@ -33,8 +33,12 @@ struct MaterialPointFields {
   PetscReal       *temperature = nullptr; // K
   PetscReal       *wave_speed  = nullptr; // out: longitudinal wave speed, m/s
   PetscReal       *internal_energy = nullptr; // in/out: accumulated stress work, J
-  DM               swarm = nullptr;           // the swarm, for fields a model registered itself
-  PetscReal        time  = 0;                 // t_{n+1}, s
+  const MaterialState *state = nullptr;       // the state fields of every material's StateFields
+  const PetscInt64 *id          = nullptr;    // particle id, the same on any rank count (reproducible draws)
+  const PetscReal  *half_width0 = nullptr;    // bs dim: half-widths at seeding (m), if the particles have them
+  const PetscReal  *volume0     = nullptr;    // else the volume at seeding, m^3
+  PetscInt          dim         = 3;          // spatial dimension of the run
+  PetscReal         time        = 0;          // t_{n+1}, s
 };
 
 // A per-particle field a model registered and wants in the output.
@@ -51,10 +55,11 @@ public:
   virtual PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) = 0;
   // Creates what depends on the parameters (sub-models); called after SetFromOptions.
   virtual PetscErrorCode SetUp(MPI_Comm comm) { (void)comm; return PETSC_SUCCESS; }
-  // Registers the model's per-particle state; called before DMSwarmFinalizeFieldRegister.
-  virtual PetscErrorCode RegisterFields(DM swarm) { (void)swarm; return PETSC_SUCCESS; }
-  // Sets the model state of newly seeded particles [begin, end).
-  virtual PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) { (void)swarm; (void)begin; (void)end; return PETSC_SUCCESS; }
+  // The model's per-particle state, in the order the fields are registered (each name once over
+  // all materials: materials of one model share their fields).
+  virtual std::vector<StateField> StateFields() const { return {}; }
+  // Sets the model state of newly seeded particles [begin, end) of this material.
+  virtual PetscErrorCode InitializeState(const MaterialPointFields &f, PetscInt begin, PetscInt end) { (void)f; (void)begin; (void)end; return PETSC_SUCCESS; }
   // Stress update over the particles with material == id: sigma_{n+1} from sigma_n, L, F, dt.
   // Also writes the wave speed and adds the stress work 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt,
   // V_mid = V_{n+1} (1 - tr(D) dt / 2) (second order in dt; see StressWork).
@@ -82,7 +87,6 @@ public:
   PetscReal   density_ = -1; // reference mass density, kg/m^3
   PetscReal   bulk_modulus_ = -1; // reference bulk modulus, Pa (the solid's volume as the gas sees it, ice.md 2.2)
   PetscInt    id_      = -1; // material id (index in -materials) of its particles
-  PetscInt    registered_bytes_ = 0; // bytes per particle of the fields RegisterFields added
   bool        nonlocal_active_ = false; // the nonlocal average runs after the stress update (set by src/mpm/nonlocal.cxx)
 };
 

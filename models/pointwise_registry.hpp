@@ -3,7 +3,7 @@
 // under the material's prefix. One implementation for every family; each family keeps its own list
 // and registration lines.
 #pragma once
-#include "../src/util.hpp"
+#include "util.hpp"
 #include <memory>
 #include <string>
 

@@ -1,6 +1,6 @@
 // The registry of material models: one registration line per model.
 #include "material.hpp"
-#include "../src/util.hpp"
+#include "util.hpp"
 #include <cmath>
 #include <memory>
 

@@ -3,7 +3,7 @@
 // fields meet it through contact (src/mpm/grid_update.cxx). It carries no stress, and its wave
 // speed is zero (it does not limit the time step beyond its own motion).
 #include "material.hpp"
-#include "../src/util.hpp"
+#include "util.hpp"
 
 namespace burst {
 

@@ -74,11 +74,11 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(ReadGeometries(sim));
   PetscCall(HeatConductionSetUp(sim));
   PetscCall(CreateAnalyticSolution(sim));
-  PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, "failed"), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
+  PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
   // 3. The gas, on cells of the same grid (null without -ice_materials)
   {
     const Grid &g = sim.grid;
-    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}};
+    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}, sim.axisymmetric == PETSC_TRUE};
     if (!sim.materials.empty() && IceMaterialsRequested(sim.comm)) PetscCall(CouplingSolidMaterials(sim, spec.solids));
     PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
     if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(sim));

@@ -15,7 +15,7 @@
 // Adding a model: one file models/burn/<name>.cxx with a class derived from BurnModel and a create
 // function, and one line in models/burn/registry.cxx.
 #pragma once
-#include "../../src/petsc_compat.hpp"
+#include "../petsc_compat.hpp"
 #include <petscviewer.h>
 #include <string>
 

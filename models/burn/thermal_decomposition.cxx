@@ -1,7 +1,7 @@
 // Thermal decomposition (self-heating) of a reactant element with SUNDIALS CVODE (6.x API: every
 // object belongs to a SUNContext). See thermal_decomposition.hpp for the model and its sources.
 #include "thermal_decomposition.hpp"
-#include "../../src/util.hpp"
+#include "../util.hpp"
 
 #include <cvode/cvode.h>
 #include <nvector/nvector_serial.h>

@@ -20,7 +20,7 @@
 //   t = t_ad (1 + 2 eps + 1/B + 6 eps^2 + 6 eps/B + 2/B^2 + ...)  (derived: with s = (T - T0) T_a/T0^2,
 //   t/t_ad = int_0^{s_end} exp(-s + eps s^2/(1 + eps s))/(1 - s/B) ds).
 #pragma once
-#include "../../src/petsc_compat.hpp"
+#include "../petsc_compat.hpp"
 #include <petscviewer.h>
 #include <memory>
 

@@ -1,5 +1,5 @@
 #include "elastic_parameters.hpp"
-#include "../../src/util.hpp"
+#include "../util.hpp"
 
 namespace burst {
 

@@ -1,4 +1,4 @@
-// Eigen views of the row-major 3x3 tensors stored in the swarm fields.
+// Eigen views of the row-major 3x3 tensors stored per particle.
 #pragma once
 #include <Eigen/Dense>
 #include <petscsys.h>

@@ -14,7 +14,7 @@
 // Adding a model: one file models/gas_eos/<name>.cxx with a class derived from GasEOS and a create
 // function, and one line in models/gas_eos/registry.cxx.
 #pragma once
-#include "../../src/petsc_compat.hpp"
+#include "../petsc_compat.hpp"
 #include <petscviewer.h>
 #include <string>
 

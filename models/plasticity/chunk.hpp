@@ -7,7 +7,7 @@
 // Conventions (models.md 0): SI units, stress tension-positive, pressure p = -tr(sigma)/3
 // compression-positive, strain rates are equivalent (von Mises) rates.
 #pragma once
-#include "../../src/petsc_compat.hpp"
+#include "../petsc_compat.hpp"
 
 namespace burst {
 
@@ -16,7 +16,7 @@ constexpr int kMaxHistory = 4;  // history variables a flow model may keep per p
 
 struct Chunk {
   int       n = 0;                 // particles in this chunk
-  PetscInt  index[kChunk];         // their indices in the swarm arrays
+  PetscInt  index[kChunk];         // their indices in the particle arrays
   PetscReal dt = 0;                // s
   PetscReal density0 = 0;          // reference density, kg/m^3
   PetscReal taylor_quinney = 0.9;  // chi of eq. 18

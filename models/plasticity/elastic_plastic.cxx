@@ -44,7 +44,6 @@
 #include "polar.hpp"
 #include "../flow_stress/flow_stress.hpp"
 #include "../material.hpp"
-#include "../../src/mpm/swarm_access.hpp"
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -54,14 +53,14 @@ namespace burst {
 
 namespace {
 // Field names of the model's per-particle state.
-constexpr const char *kPlasticStrain     = "plastic_strain";
-constexpr const char *kPlasticStrainRate = "plastic_strain_rate";
+constexpr const char *kPlasticStrain     = state_field::plastic_strain;
+constexpr const char *kPlasticStrainRate = state_field::plastic_strain_rate;
 constexpr const char *kPorosity          = "porosity";
 constexpr const char *kDamage            = "damage";
 constexpr const char *kRotation          = "rotation";      // R of the polar decomposition at t_n, bs 9
 constexpr const char *kFlowHistory       = "flow_history";  // flow-model history, bs kMaxHistory
 constexpr const char *kFlowStress        = "flow_stress";   // Pa (output)
-constexpr const char *kFailed            = "failed";        // int: failure criterion bits, 0 = intact
+constexpr const char *kFailed            = state_field::failed; // int: failure criterion bits, 0 = intact
 constexpr const char *kFailureTime       = "failure_time";  // s
 constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
 constexpr const char *kPlasticDilatation = "plastic_dilatation"; // accumulated tr(eps_p) (GTN), -
@@ -74,15 +73,15 @@ constexpr const char *kNonlocalStrain    = "nonlocal_damage";        // D_bar: i
 constexpr const char *kSofteningDisp     = "softening_displacement"; // u_p = h_p sum Delta eps_p since the criterion was met, m
 constexpr const char *kSofteningLimit    = "softening_limit";        // u_f = 2 G_f / sigma_i, m (0: not softening)
 constexpr const char *kSoftening         = "softening";              // omega = u_p / u_f in [0, 1] (output)
-constexpr const char *kSofteningBits     = "softening_criteria";     // int: the criterion bits that started the softening
+constexpr const char *kSofteningBits     = state_field::softening_criteria; // int: the criterion bits that started the softening
 
 // Views of the model's per-particle state, gotten together (the members in declaration order, so a
 // structured binding names them).
-struct StateFields {
+struct PlasticState {
   PetscReal *eps, *rate, *f, *D, *R, *history, *sigma_f, *t_fail, *dilatation, *released, *work, *heat, *elastic;
   PetscInt  *failed, *unstable;
 
-  PetscErrorCode Get(SwarmAccess &fields)
+  PetscErrorCode Get(const MaterialState &fields)
   {
     PetscFunctionBeginUser;
     PetscCall(fields.Get(kPlasticStrain, &eps));
@@ -103,39 +102,6 @@ struct StateFields {
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
-
-// Registers the model's fields once per swarm (several elastic_plastic materials share them); the
-// mark is composed with the swarm, so it lives and dies with it.
-PetscErrorCode FieldsRegistered(DM swarm, PetscBool *registered)
-{
-  PetscObject mark = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_elastic_plastic_fields", &mark));
-  *registered = mark ? PETSC_TRUE : PETSC_FALSE;
-  if (!mark) {
-    PetscContainer container;
-    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
-    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_elastic_plastic_fields", (PetscObject)container));
-    PetscCall(PetscContainerDestroy(&container));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-// The same mark for the regularisation fields (registered once, only if a material regularises).
-PetscErrorCode RegularizationFieldsRegistered(DM swarm, PetscBool mark_now, PetscBool *registered)
-{
-  PetscObject mark = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_regularization_fields", &mark));
-  *registered = mark ? PETSC_TRUE : PETSC_FALSE;
-  if (!mark && mark_now) {
-    PetscContainer container;
-    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
-    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_regularization_fields", (PetscObject)container));
-    PetscCall(PetscContainerDestroy(&container));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 
 // Reproducible uniform and normal draws keyed by (seed, particle id): the same on any rank count.
 inline std::uint64_t SplitMix64(std::uint64_t x)
@@ -159,32 +125,26 @@ inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stre
 struct RegularizationFields {
   PetscReal       *source = nullptr, *average = nullptr, *strain = nullptr, *disp = nullptr, *limit = nullptr, *omega = nullptr;
   PetscInt        *bits = nullptr;
-  const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the swarm has them
-  const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver's swarm), m^3
+  const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the particles have them
+  const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver), m^3
   PetscInt         dim         = 0;
   // The particle size h_p of the crack band, m.
   PetscReal Size(PetscInt q) const { return half_width0 ? 2 * half_width0[dim * q] : std::pow(volume0[q], 1.0 / dim); }
 
-  PetscErrorCode Get(DM swarm, SwarmAccess &fields)
+  PetscErrorCode Get(const MaterialPointFields &mp)
   {
-    PetscBool registered;
     PetscFunctionBeginUser;
-    PetscCall(RegularizationFieldsRegistered(swarm, PETSC_FALSE, &registered));
-    if (!registered) PetscFunctionReturn(PETSC_SUCCESS);
-    PetscCall(fields.Get(kNonlocalSource, &source));
-    PetscCall(fields.Get(kNonlocalAverage, &average));
-    PetscCall(fields.Get(kNonlocalStrain, &strain));
-    PetscCall(fields.Get(kSofteningDisp, &disp));
-    PetscCall(fields.Get(kSofteningLimit, &limit));
-    PetscCall(fields.Get(kSoftening, &omega));
-    PetscCall(fields.Get(kSofteningBits, &bits));
-    std::vector<std::string> *names;
-    PetscCall(SwarmFieldNames(swarm, &names));
-    bool has_half_width = false;
-    for (const std::string &n : *names) has_half_width = has_half_width || n == "half_width0";
-    if (has_half_width) PetscCall(fields.Get("half_width0", &half_width0));
-    else PetscCall(fields.Get("volume0", &volume0));
-    PetscCall(DMGetDimension(swarm, &dim));
+    if (!mp.state->Has(kNonlocalSource)) PetscFunctionReturn(PETSC_SUCCESS); // no material regularises
+    PetscCall(mp.state->Get(kNonlocalSource, &source));
+    PetscCall(mp.state->Get(kNonlocalAverage, &average));
+    PetscCall(mp.state->Get(kNonlocalStrain, &strain));
+    PetscCall(mp.state->Get(kSofteningDisp, &disp));
+    PetscCall(mp.state->Get(kSofteningLimit, &limit));
+    PetscCall(mp.state->Get(kSoftening, &omega));
+    PetscCall(mp.state->Get(kSofteningBits, &bits));
+    half_width0 = mp.half_width0;
+    volume0     = mp.volume0;
+    dim         = mp.dim;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
@@ -359,50 +319,34 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  PetscErrorCode RegisterFields(DM swarm) override
+  // The regularisation state first, and only when this material regularises (runs without it keep
+  // their fields and bytes); then the plastic state, shared by every elastic_plastic material.
+  std::vector<StateField> StateFields() const override
   {
-    PetscBool registered;
-    PetscFunctionBeginUser;
-    PetscCall(RegisterRegularizationFields(swarm));
-    PetscCall(FieldsRegistered(swarm, &registered));
-    if (registered) PetscFunctionReturn(PETSC_SUCCESS);
-    const char *real1[] = {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy, kPlasticWork, kPlasticHeat, kElasticEnergy};
-    for (const char *name : real1) PetscCall(RegisterSwarmField(swarm, name, 1, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kRotation, 9, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kFlowHistory, kMaxHistory, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kFailed, 1, PETSC_INT, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kUnstable, 1, PETSC_INT, &registered_bytes_));
-    PetscFunctionReturn(PETSC_SUCCESS);
+    std::vector<StateField> fields;
+    if (regularization != Regularization::None) {
+      fields.push_back({kNonlocalSource, 1 + kNonlocalComponents, false});
+      fields.push_back({kNonlocalAverage, kNonlocalComponents, false});
+      for (const char *name : {kNonlocalStrain, kSofteningDisp, kSofteningLimit, kSoftening}) fields.push_back({name, 1, false});
+      fields.push_back({kSofteningBits, 1, true});
+    }
+    for (const char *name : {kPlasticStrain, kPlasticStrainRate, kPorosity, kDamage, kPlasticDilatation, kFlowStress, kFailureTime, kFailureEnergy, kPlasticWork, kPlasticHeat, kElasticEnergy}) fields.push_back({name, 1, false});
+    fields.push_back({kRotation, 9, false});
+    fields.push_back({kFlowHistory, kMaxHistory, false});
+    fields.push_back({kFailed, 1, true});
+    fields.push_back({kUnstable, 1, true});
+    return fields;
   }
 
-  // The regularisation state, only when this material regularises (so runs without it keep their
-  // fields and bytes); registered before DMSwarmFinalizeFieldRegister like the rest.
-  PetscErrorCode RegisterRegularizationFields(DM swarm)
+  PetscErrorCode InitializeState(const MaterialPointFields &mp, PetscInt begin, PetscInt end) override
   {
-    PetscBool registered;
-    PetscFunctionBeginUser;
-    PetscCall(RegularizationFieldsRegistered(swarm, regularization != Regularization::None ? PETSC_TRUE : PETSC_FALSE, &registered));
-    if (registered || regularization == Regularization::None) PetscFunctionReturn(PETSC_SUCCESS);
-    PetscCall(RegisterSwarmField(swarm, kNonlocalSource, 1 + kNonlocalComponents, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kNonlocalAverage, kNonlocalComponents, PETSC_REAL, &registered_bytes_));
-    const char *real1[] = {kNonlocalStrain, kSofteningDisp, kSofteningLimit, kSoftening};
-    for (const char *name : real1) PetscCall(RegisterSwarmField(swarm, name, 1, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kSofteningBits, 1, PETSC_INT, &registered_bytes_));
-    PetscFunctionReturn(PETSC_SUCCESS);
-  }
-
-  PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) override
-  {
-    SwarmAccess       fields(swarm);
-    const PetscInt   *material;
-    const PetscInt64 *pid;
-    StateFields       state;
+    const PetscInt      *material = mp.material;
+    const PetscInt64    *pid      = mp.id;
+    PlasticState         state;
     RegularizationFields reg;
     PetscFunctionBeginUser;
-    PetscCall(fields.Get("material", &material));
-    PetscCall(fields.Get(DMSwarmField_pid, &pid));
-    PetscCall(state.Get(fields));
-    PetscCall(reg.Get(swarm, fields));
+    PetscCall(state.Get(*mp.state));
+    PetscCall(reg.Get(mp));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     const PetscInt id = id_;
     for (PetscInt p = begin; p < end; ++p) {
@@ -424,21 +368,19 @@ public:
         reg.bits[p]                                        = 0;
       }
     }
-    PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
-    SwarmAccess fields(mp.swarm);
-    StateFields state;
-    Chunk       c;
+    PlasticState state;
+    Chunk        c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
-    PetscCall(state.Get(fields));
+    PetscCall(state.Get(*mp.state));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     RegularizationFields reg;
-    PetscCall(reg.Get(mp.swarm, fields));
+    PetscCall(reg.Get(mp));
     const bool crack_band = regularization == Regularization::CrackBand;
     // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
     // neighbours, so there the local increments are their own average
@@ -674,7 +616,6 @@ public:
         for (int h = 0; h < num_history; ++h) history[kMaxHistory * q + h] = c.history[k][h];
       }
     }
-    PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 

@@ -7,8 +7,7 @@
 // keeps a PetscFunctionList filled by its registration file (models/FAMILY/registry.cxx).
 #pragma once
 #include "chunk.hpp"
-#include "../../src/util.hpp"
-#include <petscdmswarm.h>
+#include "../util.hpp"
 #include <petscviewer.h>
 #include <string>
 

@@ -2,7 +2,7 @@
 // CMAME 151 (1998) 19; heating as Hackett & Bennett, IJNME 49 (2000) 1191): the point kernel.
 //
 // Pure physics at one material point, on plain arrays: no swarm, no grid, no PETSc calls, no
-// allocation (the Material adapter, viscoscram_material.cxx, owns the swarm fields and the
+// allocation (the Material adapter, viscoscram_material.cxx, owns the per-particle state and the
 // co-rotated frame). Per point the state is five symmetric deviatoric element stresses S_i (in the
 // co-rotated frame) and the radius c of one mean penny-shaped crack. Given the mean stress at t_n,
 // the rate of deformation D (co-rotated, constant over the step), dt, density and temperature,

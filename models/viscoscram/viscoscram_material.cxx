@@ -1,4 +1,4 @@
-// The material `viscoscram`: the adapter between the Material interface (swarm fields, options,
+// The material `viscoscram`: the adapter between the Material interface (state fields, options,
 // the co-rotated frame) and the point kernel of viscoscram.hpp, which knows neither swarm nor grid.
 //
 // Per particle and step (the Green-Naghdi frame of the metal update, models/plasticity/polar.hpp):
@@ -9,12 +9,12 @@
 //   3. sigma_{n+1} = R_{n+1} (S + sigma_m I) R_{n+1}^T; the stress work of the interface
 //      (StressWork) goes to internal_energy; the dissipated energies heat the particle and are
 //      accumulated per particle (J); wave speed sqrt((K + 4 G/3)/rho) with the unsoftened G.
-// The swarm access stays here: the kernel is unit-tested on plain arrays (tests/unit/test_viscoscram.cxx).
+// The kernel is unit-tested on plain arrays (tests/unit/test_viscoscram.cxx), the adapter on the state
+// arrays of models/material_state.hpp.
 #include "viscoscram.hpp"
 #include "../material.hpp"
 #include "../plasticity/polar.hpp"
-#include "../../src/mpm/swarm_access.hpp"
-#include "../../src/util.hpp"
+#include "../util.hpp"
 #include <cmath>
 
 namespace burst {
@@ -28,21 +28,6 @@ constexpr const char *kCrackDissipation  = "crack_dissipation";        // accumu
 
 const char *const CrackHeatingNames[] = {"crack_work", "release"};
 
-// The fields are registered once per swarm, whichever viscoscram material comes first.
-PetscErrorCode FieldsRegistered(DM swarm, PetscBool *registered)
-{
-  PetscObject mark = nullptr;
-  PetscFunctionBeginUser;
-  PetscCall(PetscObjectQuery((PetscObject)swarm, "burst_viscoscram_fields", &mark));
-  *registered = mark ? PETSC_TRUE : PETSC_FALSE;
-  if (!mark) {
-    PetscContainer container;
-    PetscCall(PetscContainerCreate(PetscObjectComm((PetscObject)swarm), &container));
-    PetscCall(PetscObjectCompose((PetscObject)swarm, "burst_viscoscram_fields", (PetscObject)container));
-    PetscCall(PetscContainerDestroy(&container));
-  }
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 } // namespace
 
 class ViscoScram final : public Material {
@@ -116,26 +101,17 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  PetscErrorCode RegisterFields(DM swarm) override
+  std::vector<StateField> StateFields() const override
   {
-    PetscBool registered;
-    PetscFunctionBeginUser;
-    PetscCall(FieldsRegistered(swarm, &registered));
-    if (registered) PetscFunctionReturn(PETSC_SUCCESS);
-    PetscCall(RegisterSwarmField(swarm, kElementStress, viscoscram::kStateSize, PETSC_REAL, &registered_bytes_));
-    PetscCall(RegisterSwarmField(swarm, kRotation, 9, PETSC_REAL, &registered_bytes_));
-    const char *real1[] = {kCrackRadius, kViscousDissipation, kCrackDissipation};
-    for (const char *name : real1) PetscCall(RegisterSwarmField(swarm, name, 1, PETSC_REAL, &registered_bytes_));
-    PetscFunctionReturn(PETSC_SUCCESS);
+    return {{kElementStress, viscoscram::kStateSize, false}, {kRotation, 9, false}, {kCrackRadius, 1, false}, {kViscousDissipation, 1, false}, {kCrackDissipation, 1, false}};
   }
 
-  PetscErrorCode InitializeState(DM swarm, PetscInt begin, PetscInt end) override
+  PetscErrorCode InitializeState(const MaterialPointFields &mp, PetscInt begin, PetscInt end) override
   {
-    SwarmAccess     fields(swarm);
-    const PetscInt *material;
-    PetscReal      *S, *R, *c, *heat_v, *heat_c;
+    const MaterialState &fields   = *mp.state;
+    const PetscInt      *material = mp.material;
+    PetscReal           *S, *R, *c, *heat_v, *heat_c;
     PetscFunctionBeginUser;
-    PetscCall(fields.Get("material", &material));
     PetscCall(fields.Get(kElementStress, &S));
     PetscCall(fields.Get(kRotation, &R));
     PetscCall(fields.Get(kCrackRadius, &c));
@@ -148,14 +124,13 @@ public:
       c[p]      = initial_crack_radius;
       heat_v[p] = heat_c[p] = 0;
     }
-    PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
-    SwarmAccess fields(mp.swarm);
-    PetscReal  *S, *R, *c, *heat_v, *heat_c;
+    const MaterialState &fields = *mp.state;
+    PetscReal           *S, *R, *c, *heat_v, *heat_c;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(fields.Get(kElementStress, &S));
@@ -197,7 +172,6 @@ public:
       substeps += r.substeps;
       most_substeps = PetscMax(most_substeps, (PetscInt)r.substeps);
     }
-    PetscCall(fields.RestoreAll());
     if (points) PetscCall(PetscInfo(nullptr, "Material %s (viscoscram): %" PetscInt_FMT " points, %.3g sub-steps per point on average, at most %" PetscInt_FMT "\n", Name(), points, (double)substeps / points, most_substeps));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

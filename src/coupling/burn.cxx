@@ -13,7 +13,7 @@
 #include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 

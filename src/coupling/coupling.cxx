@@ -8,7 +8,7 @@
 #include "coupling_impl.hpp"
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include <cmath>
 
 namespace burst {

@@ -15,7 +15,7 @@
 // All state is cell-centred and every material lives in every cell (a tiny mass where absent,
 // ice.md 7.1). This header knows nothing of MPM: the driver passes the node DMDA for its ownership.
 #pragma once
-#include "../petsc_compat.hpp"
+#include "petsc_compat.hpp"
 #include "../../models/gas_eos/gas_eos.hpp"
 #include <petscdmda.h>
 #include <petscksp.h>
@@ -238,6 +238,7 @@ struct IceGridSpec {
   PetscReal gravity[3]; // m/s^2
   DM        nodes;
   std::vector<IceSolidSpec> solids; // after the gases in material order
+  bool      axisymmetric = false; // the grid is (r, z): the gas cells cannot be (they are Cartesian)
 };
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
 // Whether the options list gas materials (-ice_materials), before the solver is created.

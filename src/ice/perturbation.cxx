@@ -15,7 +15,7 @@
 // -ice_perturbation_center gives 1 to dim coordinates: with one, |x - x0| is the distance along x
 // (a planar pulse); with more, the distance in those directions.
 #include "ice.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include <cmath>
 
 namespace burst {

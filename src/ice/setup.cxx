@@ -4,7 +4,7 @@
 // direction, so a cell and its lower node live on the same rank (petsc.md 5.5). Width 2 (BOX): the
 // second-order advection needs the limited gradient of a donor cell one ghost layer out.
 #include "ice.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include "../memory.hpp"
 #include <cmath>
 #include <cstring>
@@ -427,6 +427,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
     for (const IceSolidSpec &s : grid.solids) delete s.eos;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
+  PetscCheck(!grid.axisymmetric, comm, PETSC_ERR_SUP, "Option -axisymmetric does not support gas materials (-ice_materials): the ICE cells are Cartesian");
   // the solids, after the gases; solid-solid pairs do not exchange (MPM contact handles them)
   PetscCheck(ice->nmat + (PetscInt)grid.solids.size() <= kIceMaxMaterials, comm, PETSC_ERR_USER_INPUT, "Gas and solid materials together: at most %d", kIceMaxMaterials);
   for (const IceSolidSpec &s : grid.solids) {

@@ -44,7 +44,7 @@
 #include "../ice/ice.hpp"
 #include "../coupling/coupling_impl.hpp"
 #include "../mpm/swarm_access.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include "run_lock.hpp"
 #include <petscviewerhdf5.h>
 #include <hdf5.h>

@@ -8,7 +8,7 @@
 // Xdmf3 readers drop them). Works for node DMDAs (cells+1 points per direction) and cell-centred
 // DMDAs (cells points, Center="Cell" on the node mesh). Checked by tests/check_paraview.py.
 #pragma once
-#include "../petsc_compat.hpp"
+#include "petsc_compat.hpp"
 #include <petscdmda.h>
 #include <petscviewer.h>
 #include <string>

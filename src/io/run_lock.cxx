@@ -11,7 +11,7 @@
 //     or a dead one qualifies), or
 //   - it cannot be parsed and is older than a minute (a lock that is being written is younger).
 #include "run_lock.hpp"
-#include "../util.hpp"
+#include "util.hpp"
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>

@@ -13,7 +13,6 @@
 // ones in (r, z), as in Uintah and NairnMPM; the GIMP weights are not re-derived for the r-weighted
 // particle domain, which costs first order only in the cells next to the axis.
 #include "simulation.hpp"
-#include "ice/ice.hpp"
 
 namespace burst {
 
@@ -31,7 +30,6 @@ PetscErrorCode AxisymmetricSetUp(Simulation &sim)
   PetscBool heat = PETSC_FALSE;
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-mpm_heat_conduction", &heat, nullptr));
   PetscCheck(!heat, sim.comm, PETSC_ERR_SUP, "Option -axisymmetric does not support -mpm_heat_conduction yet (its Laplacian is Cartesian)");
-  PetscCheck(!IceMaterialsRequested(sim.comm), sim.comm, PETSC_ERR_SUP, "Option -axisymmetric does not support gas materials (-ice_materials): the ICE cells are Cartesian");
   // The empty-node cut-off is a fraction of a full cell's mass: per radian, a cell at r = h.
   sim.mass_cutoff *= g.h[0];
   PetscCall(PetscInfo(nullptr, "Axisymmetric: r in [%g, %g] m, z in [%g, %g] m, mass cut-off %g kg/rad\n", (double)g.lower[0], (double)g.upper[0], (double)g.lower[1], (double)g.upper[1], (double)sim.mass_cutoff));

@@ -211,8 +211,8 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
   PetscReal        local[3] = {0, 0, 0}, global[3];
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  if (SwarmHasModelField(sim, "failed")) PetscCall(fields.Get("failed", &failed));
-  if (SwarmHasModelField(sim, "softening_criteria")) PetscCall(fields.Get("softening_criteria", &softening));
+  if (SwarmHasModelField(sim, state_field::failed)) PetscCall(fields.Get(state_field::failed, &failed));
+  if (SwarmHasModelField(sim, state_field::softening_criteria)) PetscCall(fields.Get(state_field::softening_criteria, &softening));
   PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
@@ -241,7 +241,7 @@ PetscErrorCode FragmentsMonitor(Simulation &sim)
 {
   PetscReal velocity, failed;
   PetscFunctionBeginUser;
-  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, "failed")) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(MeanRadialVelocity(sim, &velocity, &failed));
   if (failed > 0) {
     fracture_velocity = velocity;
@@ -266,7 +266,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   PetscInt       n;
   PetscFunctionBeginUser;
   if (!options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
-  const bool       has_failed = SwarmHasModelField(sim, "failed");
+  const bool       has_failed = SwarmHasModelField(sim, state_field::failed);
   SwarmAccess      fields(sim.swarm);
   const PetscReal *x, *v, *m, *V;
   const PetscInt  *failed = nullptr, *material;
@@ -278,7 +278,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   PetscCall(fields.Get(field::mass, &m));
   PetscCall(fields.Get(field::volume, &V));
   PetscCall(fields.Get(field::fragment, &fragment));
-  if (has_failed) PetscCall(fields.Get("failed", &failed));
+  if (has_failed) PetscCall(fields.Get(state_field::failed, &failed));
 
   // 1. local components
   std::vector<PetscInt>  intact;

@@ -94,7 +94,7 @@ struct G2PKernel {
     PetscCall(fields.Get(field::volume0, &vol0));
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
-    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
+    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
@@ -244,7 +244,7 @@ struct XPICKernel {
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(field::mass, &m));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
-    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
+    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {

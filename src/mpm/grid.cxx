@@ -250,7 +250,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     // the plastic rate of the metal models (models/plasticity), when a material carries it
     bool plastic_field = false;
     for (const auto &m : sim.materials)
-      for (const OutputField &of : m->OutputFields()) plastic_field = plastic_field || std::string(of.name) == "plastic_strain_rate";
+      for (const OutputField &of : m->OutputFields()) plastic_field = plastic_field || std::string(of.name) == state_field::plastic_strain_rate;
     PetscInt         n;
     const PetscInt  *cell, *material;
     const PetscReal *rate = nullptr;
@@ -258,7 +258,7 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     SwarmAccess fields(sim.swarm);
     PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
     PetscCall(fields.Get(field::material, &material));
-    if (plastic_field && g.balance_plastic_weight != 1) PetscCall(fields.Get("plastic_strain_rate", &rate));
+    if (plastic_field && g.balance_plastic_weight != 1) PetscCall(fields.Get(state_field::plastic_strain_rate, &rate));
     for (PetscInt p = 0; p < n; ++p) {
       if (cell[p] < 0) continue;
       const PetscInt  c[3] = {cell[p] % nc[0], (cell[p] / nc[0]) % nc[1], cell[p] / (nc[0] * nc[1])};

@@ -102,7 +102,7 @@ struct P2GKernel {
     if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (nvf > 1) PetscCall(fields.Get(field::material, &material));
-    if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get("failed", &failed));
+    if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     constexpr bool   do_mass = MASS, do_mom = MOM, do_force = FORCE;

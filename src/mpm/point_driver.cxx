@@ -20,7 +20,7 @@
 // state; then every other scalar field the material lists in OutputFields, by its name (e.g. crack_radius).
 #include "simulation.hpp"
 #include "options_check.hpp"
-#include "mpm/swarm_access.hpp"
+#include "mpm/material_state.hpp"
 #include "util.hpp"
 #include "expm.hpp"
 #include <cstdio>
@@ -132,7 +132,8 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   const char *real1[] = {field::mass, field::volume, field::volume0, field::temperature, field::wave_speed, field::internal_energy};
   for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(sw, name, 1, PETSC_REAL));
   PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
-  PetscCall(material.RegisterFields(sw));
+  PetscInt bytes = 0;
+  PetscCall(RegisterMaterialState(sw, sim.materials, &bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
   PetscCall(DMSwarmSetLocalSizes(sw, 2, 0));
   {
@@ -162,7 +163,14 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     }
     PetscCall(f.RestoreAll());
   }
-  PetscCall(material.InitializeState(sw, 0, 2));
+  {
+    SwarmAccess         f(sw);
+    MaterialState       state;
+    MaterialPointFields mp;
+    PetscCall(GetMaterialPointFields(f, sw, state, mp));
+    PetscCall(material.InitializeState(mp, 0, 2));
+    PetscCall(f.RestoreAll());
+  }
   PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, true))); // every option read by now: none may be misspelled
 
   const PetscReal total_time = o.final_strain / o.rate, dt = total_time / o.steps;
@@ -173,7 +181,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy");
   }
   // model fields written when the material has them (it declares them in OutputFields)
-  const char *optional[] = {"plastic_strain", "plastic_strain_rate", "porosity", "damage", "flow_stress", "unstable", "failed"};
+  const char *optional[] = {state_field::plastic_strain, state_field::plastic_strain_rate, "porosity", "damage", "flow_stress", "unstable", state_field::failed};
   bool        present[7] = {false, false, false, false, false, false, false};
   for (int k = 0; k < 7; ++k)
     for (const OutputField &of : material.OutputFields()) present[k] = present[k] || std::string(of.name) == optional[k];
@@ -197,8 +205,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         const PetscReal a = it == 0 ? a0 : a1;
         PetscCall(DMSwarmCopyPoint(sw, 0, 1)); // copies point 0 into point 1
         SwarmAccess f(sw);
-        MaterialPointFields mp;
-        PetscInt           *mat;
+        PetscInt   *mat;
         PetscReal          *F, *Lp, *V, *V0, *T, *sigma;
         PetscCall(f.Get(field::material, &mat));
         PetscCall(f.Get(field::F, &F));
@@ -216,20 +223,16 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         Mat3Map(Lp + 9) = L;
         V[1]             = V0[1] * Mat3Map(F + 9).determinant();
         mat[0]           = -1; // only the trial point takes the step
-        mp.n             = 2;
-        mp.swarm         = sw;
-        mp.time          = step * dt;
-        mp.material      = mat;
-        mp.L             = Lp;
-        mp.F             = F;
-        mp.stress        = sigma;
-        PetscCall(f.Get(field::mass, &mp.mass));
-        mp.volume = V;
-        mp.temperature = T;
-        PetscCall(f.Get(field::wave_speed, &mp.wave_speed));
-        PetscCall(f.Get(field::internal_energy, &mp.internal_energy));
-        PetscCall(f.RestoreAll()); // the material gets its own fields; pointers stay valid (no resize)
-        PetscCall(material.UpdateStress(mp, id, dt));
+        PetscCall(f.RestoreAll());
+        {
+          SwarmAccess         views(sw);
+          MaterialState       state;
+          MaterialPointFields mp;
+          PetscCall(GetMaterialPointFields(views, sw, state, mp));
+          mp.time = step * dt;
+          PetscCall(material.UpdateStress(mp, id, dt));
+          PetscCall(views.RestoreAll());
+        }
         PetscCall(f.Get(field::material, &mat));
         PetscCall(f.Get(field::stress, &sigma));
         PetscCall(f.Get(field::temperature, &T));

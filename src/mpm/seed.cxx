@@ -4,7 +4,7 @@
 // the centres of equal sub-cells. A particle takes the volume of its sub-cell and mass = density x
 // volume. Geometries are filled in the order listed; a point already claimed is not seeded twice.
 #include "mpm/geometry.hpp"
-#include "mpm/swarm_access.hpp"
+#include "mpm/material_state.hpp"
 #include "util.hpp"
 #include "memory.hpp"
 #include "mpm/analytic.hpp"
@@ -344,7 +344,14 @@ PetscErrorCode SeedParticles(Simulation &sim)
     }
   }
   PetscCall(fields.RestoreAll());
-  for (auto &m : sim.materials) PetscCall(m->InitializeState(sim.swarm, 0, n));
+  {
+    MaterialPointFields f;
+    MaterialState       state;
+    SwarmAccess         views(sim.swarm);
+    PetscCall(GetMaterialPointFields(views, sim.swarm, state, f));
+    for (auto &m : sim.materials) PetscCall(m->InitializeState(f, 0, n));
+    PetscCall(views.RestoreAll());
+  }
   PetscCall(PetscInfo(sim.swarm, "Seeded %" PetscInt_FMT " particles on this rank, %" PetscInt64_FMT " in all\n", n, sim.total_particles));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -18,7 +18,7 @@
 // weights stay non-negative (w_1 >= w_{-1} whenever node -1 is in the support). A particle on a wall
 // node maps fully onto it.
 #pragma once
-#include "../petsc_compat.hpp"
+#include "petsc_compat.hpp"
 #include <cmath>
 #include <petscsys.h>
 #include <type_traits>

@@ -1,37 +1,20 @@
 // The constitutive call: each material updates the stress of its own particles in one flat loop
 // (models/). F and V were updated with L in the G2P pass (g2p.cxx).
 #include "../simulation.hpp"
-#include "mpm/swarm_access.hpp"
+#include "mpm/material_state.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
 namespace burst {
 
-// Gathers the field views a material needs into `f`; `fields` restores them.
-static PetscErrorCode GetPointFields(SwarmAccess &fields, DM swarm, MaterialPointFields &f)
-{
-  PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(swarm, &f.n));
-  f.swarm = swarm;
-  PetscCall(fields.Get(field::material, &f.material));
-  PetscCall(fields.Get(field::L, &f.L));
-  PetscCall(fields.Get(field::F, &f.F));
-  PetscCall(fields.Get(field::stress, &f.stress));
-  PetscCall(fields.Get(field::mass, &f.mass));
-  PetscCall(fields.Get(field::volume, &f.volume));
-  PetscCall(fields.Get(field::temperature, &f.temperature));
-  PetscCall(fields.Get(field::wave_speed, &f.wave_speed));
-  PetscCall(fields.Get(field::internal_energy, &f.internal_energy));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
-
 PetscErrorCode UpdateStress(Simulation &sim)
 {
   MaterialPointFields f;
+  MaterialState       state;
   SwarmAccess         fields(sim.swarm);
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.ev_stress, 0, 0, 0, 0));
-  PetscCall(GetPointFields(fields, sim.swarm, f));
+  PetscCall(GetMaterialPointFields(fields, sim.swarm, state, f));
   f.time = sim.time + sim.dt;
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) PetscCall(sim.materials[id]->UpdateStress(f, id, sim.dt));
   if (sim.viscosity[0] > 0 || sim.viscosity[1] > 0) {
@@ -64,9 +47,10 @@ PetscErrorCode UpdateStress(Simulation &sim)
 PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim)
 {
   MaterialPointFields f;
+  MaterialState       state;
   SwarmAccess         fields(sim.swarm);
   PetscFunctionBeginUser;
-  PetscCall(GetPointFields(fields, sim.swarm, f));
+  PetscCall(GetMaterialPointFields(fields, sim.swarm, state, f));
   f.time = sim.time;
   for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
     PetscCall(sim.materials[id]->UpdateStress(f, id, 0.0));

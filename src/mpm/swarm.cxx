@@ -2,7 +2,7 @@
 // ownership ranges (petsc.md 3, 4.1-4.2). BASIC migration sends each point straight to its owner at
 // any distance, so nothing is lost silently; burst still compares the global count before and after.
 #include "simulation.hpp"
-#include "mpm/swarm_access.hpp"
+#include "mpm/material_state.hpp"
 #include "util.hpp"
 #include <cmath>
 #include <cstring>
@@ -43,10 +43,7 @@ PetscErrorCode CreateSwarm(Simulation &sim)
   PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &sim.swarm_bytes));
   if (sim.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &sim.swarm_bytes));
   if (sim.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &sim.swarm_bytes));
-  for (auto &m : sim.materials) {
-    PetscCall(m->RegisterFields(sw));
-    sim.swarm_bytes += m->registered_bytes_;
-  }
+  PetscCall(RegisterMaterialState(sw, sim.materials, &sim.swarm_bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
   PetscOptionsBegin(sim.comm, "", "Particle order", "Swarm");
   PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", sim.sort_interval, &sim.sort_interval, nullptr));

@@ -259,7 +259,7 @@ PetscErrorCode TaylorFinish(Simulation &sim)
   PetscCall(fields.Get(field::F, &F));
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::material, &material));
-  if (SwarmHasModelField(sim, "plastic_strain")) PetscCall(fields.Get("plastic_strain", &eps));
+  if (SwarmHasModelField(sim, state_field::plastic_strain)) PetscCall(fields.Get(state_field::plastic_strain, &eps));
   const int az = dim == 2 ? 1 : 2; // axis direction
   for (PetscInt p = 0; p < n; ++p) {
     if (material[p] != rod) continue;

@@ -8,14 +8,12 @@
 //   1. GTNReturn called directly on a Chunk with a flow model defined here (linear hardening, a
 //      rate-dependent power law with one history variable) or the registered johnson_cook model.
 //   2. The damage models created through their registry, on a Chunk held at constant state.
-//   3. The whole elastic_plastic material (registry, one-point DMSwarm as in src/mpm/point_driver.cxx)
+//   3. The whole elastic_plastic material (registry, one point on plain arrays)
 //      under pure dilatation L = r I, against an independent RK4 integration of the rate equations
 //      and against an independent re-implementation of the discrete update.
 #include "material.hpp"
 #include "flow_stress/flow_stress.hpp"
 #include "plasticity/families.hpp"
-#include "simulation.hpp"
-#include "mpm/swarm_access.hpp"
 
 #include <Eigen/Dense>
 #include <gtest/gtest.h>
@@ -466,147 +464,81 @@ TEST(VonMisesReturn, PairedLanesMatchOnePointAtATime)
 }
 
 // -------------------------------------------------------------------------------------------------
-// The elastic_plastic material on a one-point swarm (the set-up of src/mpm/point_driver.cxx).
+// The elastic_plastic material on one point held in plain arrays (its state in
+// MaterialStateStorage, as a swarm would hand it over).
 namespace {
 
-// DMSwarms are destroyed only after the last test: elastic_plastic registers its fields once per DM
-// address (RegisterFieldOnce), and a new swarm at a freed address would otherwise miss them.
-class SwarmKeeper : public ::testing::Environment {
-public:
-  static std::vector<DM> &List()
-  {
-    static std::vector<DM> list;
-    return list;
-  }
-  void TearDown() override
-  {
-    for (DM &d : List()) DMDestroy(&d);
-    List().clear();
-  }
-};
-::testing::Environment *const kSwarmKeeper = ::testing::AddGlobalTestEnvironment(new SwarmKeeper);
-
 struct PointRun {
-  Material *material = nullptr;
-  DM        sw       = nullptr;
-  M3        F        = M3::Identity();
-  double    V0       = 1e-9;
+  Material            *material = nullptr;
+  M3                   F        = M3::Identity();
+  double               V0       = 1e-9;
+  PetscReal            Fp[9]{}, sigma[9]{}, Lp[9]{}, mass = 0, volume = 0, volume0 = 0, temperature = 0, wave_speed = 0, internal_energy = 0;
+  PetscInt             material_id = 0;
+  PetscInt64           id          = 0;
+  MaterialStateStorage storage;
+
+  MaterialPointFields Fields(double t)
+  {
+    MaterialPointFields mp;
+    mp.n               = 1;
+    mp.time            = t;
+    mp.material        = &material_id;
+    mp.L               = Lp;
+    mp.F               = Fp;
+    mp.stress          = sigma;
+    mp.mass            = &mass;
+    mp.volume          = &volume;
+    mp.volume0         = &volume0;
+    mp.temperature     = &temperature;
+    mp.wave_speed      = &wave_speed;
+    mp.internal_energy = &internal_energy;
+    mp.id              = &id;
+    mp.dim             = 3;
+    mp.state           = &storage.State();
+    return mp;
+  }
 
   PetscErrorCode Setup(Material *m, double T0)
   {
     PetscFunctionBeginUser;
-    material     = m;
+    material      = m;
     material->id_ = 0;
-    PetscCall(DMCreate(PETSC_COMM_SELF, &sw));
-    PetscCall(DMSetType(sw, DMSWARM));
-    PetscCall(DMSetDimension(sw, 3));
-    PetscCall(DMSwarmSetType(sw, DMSWARM_BASIC));
-    for (const char *name : {field::F, field::stress, field::L}) PetscCall(DMSwarmRegisterPetscDatatypeField(sw, name, 9, PETSC_REAL));
-    for (const char *name : {field::mass, field::volume, field::volume0, field::temperature, field::wave_speed, field::internal_energy}) PetscCall(DMSwarmRegisterPetscDatatypeField(sw, name, 1, PETSC_REAL));
-    PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
-    PetscCall(material->RegisterFields(sw));
-    PetscCall(DMSwarmFinalizeFieldRegister(sw));
-    PetscCall(DMSwarmSetLocalSizes(sw, 1, 0));
-    {
-      SwarmAccess f(sw);
-      PetscReal  *Fp, *sigma, *L, *m, *V, *Vr, *T, *c, *e;
-      PetscInt   *mat;
-      PetscInt64 *pid;
-      PetscCall(f.Get(field::F, &Fp));
-      PetscCall(f.Get(field::stress, &sigma));
-      PetscCall(f.Get(field::L, &L));
-      PetscCall(f.Get(field::mass, &m));
-      PetscCall(f.Get(field::volume, &V));
-      PetscCall(f.Get(field::volume0, &Vr));
-      PetscCall(f.Get(field::temperature, &T));
-      PetscCall(f.Get(field::wave_speed, &c));
-      PetscCall(f.Get(field::internal_energy, &e));
-      PetscCall(f.Get(field::material, &mat));
-      PetscCall(f.Get(DMSwarmField_pid, &pid));
-      for (int a = 0; a < 9; ++a) Fp[a] = (a % 4 == 0) ? 1 : 0, sigma[a] = 0, L[a] = 0;
-      V[0] = Vr[0] = V0;
-      m[0]         = material->Density() * V0;
-      T[0]         = T0;
-      c[0] = e[0] = 0;
-      mat[0]      = 0;
-      pid[0]      = 0;
-      PetscCall(f.RestoreAll());
-    }
-    PetscCall(material->InitializeState(sw, 0, 1));
+    PetscCall(storage.Allocate(material->StateFields(), 1));
+    for (int a = 0; a < 9; ++a) Fp[a] = (a % 4 == 0) ? 1 : 0;
+    volume = volume0 = V0;
+    mass             = material->Density() * V0;
+    temperature      = T0;
+    PetscCall(material->InitializeState(Fields(0), 0, 1));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
   // One step with velocity gradient L over dt ending at time t.
   PetscErrorCode Step(const M3 &L, double dt, double t)
   {
-    SwarmAccess         f(sw);
-    MaterialPointFields mp;
-    PetscInt           *mat;
-    PetscReal          *Fp, *Lp, *V, *T, *sigma, *m, *c, *e;
     PetscFunctionBeginUser;
     F = (M3::Identity() + L * dt) * F;
-    PetscCall(f.Get(field::material, &mat));
-    PetscCall(f.Get(field::F, &Fp));
-    PetscCall(f.Get(field::L, &Lp));
-    PetscCall(f.Get(field::volume, &V));
-    PetscCall(f.Get(field::temperature, &T));
-    PetscCall(f.Get(field::stress, &sigma));
-    PetscCall(f.Get(field::mass, &m));
-    PetscCall(f.Get(field::wave_speed, &c));
-    PetscCall(f.Get(field::internal_energy, &e));
-    Eigen::Map<M3> Lmap(Lp), Fmap(Fp);
-    Lmap = L;
-    Fmap = F;
-    V[0]               = V0 * F.determinant();
-    mp.n               = 1;
-    mp.swarm           = sw;
-    mp.time            = t;
-    mp.material        = mat;
-    mp.L               = Lp;
-    mp.F               = Fp;
-    mp.stress          = sigma;
-    mp.mass            = m;
-    mp.volume          = V;
-    mp.temperature     = T;
-    mp.wave_speed      = c;
-    mp.internal_energy = e;
-    PetscCall(f.RestoreAll()); // the material gets its own fields; pointers stay valid
-    PetscCall(material->UpdateStress(mp, 0, dt));
+    Eigen::Map<M3> L_map(Lp), F_map(Fp);
+    L_map  = L;
+    F_map  = F;
+    volume = V0 * F.determinant();
+    PetscCall(material->UpdateStress(Fields(t), 0, dt));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
   double Real(const char name[])
   {
-    PetscReal *v;
-    double     out = NAN;
-    if (DMSwarmGetField(sw, name, nullptr, nullptr, (void **)&v)) return out;
-    out = v[0];
-    DMSwarmRestoreField(sw, name, nullptr, nullptr, (void **)&v);
-    return out;
+    PetscReal *v = nullptr;
+    if (storage.State().GetIfPresent(name, &v) || !v) return NAN;
+    return v[0];
   }
   int Int(const char name[])
   {
-    PetscInt *v;
-    int       out = -1;
-    if (DMSwarmGetField(sw, name, nullptr, nullptr, (void **)&v)) return out;
-    out = (int)v[0];
-    DMSwarmRestoreField(sw, name, nullptr, nullptr, (void **)&v);
-    return out;
+    PetscInt *v = nullptr;
+    if (storage.State().GetIfPresent(name, &v) || !v) return -1;
+    return (int)v[0];
   }
-  M3 Stress()
-  {
-    PetscReal *v;
-    M3         s = M3::Zero();
-    if (DMSwarmGetField(sw, field::stress, nullptr, nullptr, (void **)&v)) return s;
-    s = Eigen::Map<const M3>(v);
-    DMSwarmRestoreField(sw, field::stress, nullptr, nullptr, (void **)&v);
-    return s;
-  }
-  ~PointRun()
-  {
-    if (sw) SwarmKeeper::List().push_back(sw);
-    delete material;
-  }
+  M3 Stress() { return Eigen::Map<const M3>(sigma); }
+  ~PointRun() { delete material; }
 };
 
 // Material constants of the dilatation tests: perfectly plastic matrix sigma_y = 500 MPa, K = 170

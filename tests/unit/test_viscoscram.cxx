@@ -12,14 +12,12 @@
 //                    trapezoid, StressWork) equals the stored energy plus the viscous and crack
 //                    dissipation, for both crack-heating choices; the temperature rise is the
 //                    dissipation over rho c_v
-//   ViscoScramMaterial.RigidRotationKeepsInvariants  the material (registry, swarm fields, the
+//   ViscoScramMaterial.RigidRotationKeepsInvariants  the material (registry, state fields on plain arrays, the
 //                    Green-Naghdi frame): a point loaded in uniaxial tension (cracks growing) and then
 //                    spun rigidly keeps, to rounding, the stress of a twin that is not spun, rotated
 //                    (so its invariants), its crack radius and its temperature
 #include "viscoscram/viscoscram.hpp"
 #include "material.hpp"
-#include "simulation.hpp"
-#include "mpm/swarm_access.hpp"
 #include "unit_helpers.hpp"
 
 #include <Eigen/Dense>
@@ -305,7 +303,7 @@ TEST(ViscoScramEnergy, StressWorkEqualsStoredPlusDissipated)
   }
 }
 
-// Two points of one swarm (the set-up of src/mpm/point_driver.cxx): 20 steps of uniaxial strain at
+// Two points on plain arrays: 20 steps of uniaxial strain at
 // 1e3 /s (strain 1e-3, cracks growing in tension), then 40 steps in which point 0 spins at 1e6 rad/s
 // (L = W exactly, F = R(theta) F_load exactly: 2 rad) and point 1 stands still (L = 0). With D = 0
 // exactly both see the same co-rotated rate, so sigma_0 = R sigma_1 R^T to rounding: the same
@@ -319,53 +317,31 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
   Material *material = nullptr;
   ASSERT_EQ(MaterialCreate(PETSC_COMM_WORLD, "vsr", &material), 0);
   material->id_ = 0;
-  DM sw;
-  ASSERT_EQ(DMCreate(PETSC_COMM_SELF, &sw), 0);
-  ASSERT_EQ(DMSetType(sw, DMSWARM), 0);
-  ASSERT_EQ(DMSetDimension(sw, 3), 0);
-  ASSERT_EQ(DMSwarmSetType(sw, DMSWARM_BASIC), 0);
-  for (const char *name : {field::F, field::stress, field::L}) ASSERT_EQ(DMSwarmRegisterPetscDatatypeField(sw, name, 9, PETSC_REAL), 0);
-  for (const char *name : {field::mass, field::volume, field::volume0, field::temperature, field::wave_speed, field::internal_energy}) ASSERT_EQ(DMSwarmRegisterPetscDatatypeField(sw, name, 1, PETSC_REAL), 0);
-  ASSERT_EQ(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT), 0);
-  ASSERT_EQ(material->RegisterFields(sw), 0);
-  ASSERT_EQ(DMSwarmFinalizeFieldRegister(sw), 0);
-  ASSERT_EQ(DMSwarmSetLocalSizes(sw, 2, 0), 0);
-  const double V0 = 1e-9;
-  {
-    SwarmAccess f(sw);
-    PetscReal  *F = nullptr, *sigma = nullptr, *L = nullptr, *m = nullptr, *V = nullptr, *Vr = nullptr, *T = nullptr, *c = nullptr, *e = nullptr;
-    PetscInt   *mat = nullptr;
-    ASSERT_EQ(f.Get(field::F, &F) || f.Get(field::stress, &sigma) || f.Get(field::L, &L) || f.Get(field::mass, &m) || f.Get(field::volume, &V) || f.Get(field::volume0, &Vr) ||
-                f.Get(field::temperature, &T) || f.Get(field::wave_speed, &c) || f.Get(field::internal_energy, &e) || f.Get(field::material, &mat),
-              0);
-    for (int p = 0; p < 2; ++p) {
-      for (int a = 0; a < 9; ++a) F[9 * p + a] = (a % 4 == 0) ? 1 : 0, sigma[9 * p + a] = 0, L[9 * p + a] = 0;
-      V[p] = Vr[p] = V0;
-      m[p]         = 1840 * V0;
-      T[p]         = 300;
-      c[p] = e[p] = 0;
-      mat[p]       = 0;
-    }
-    ASSERT_EQ(f.RestoreAll(), 0);
+  // two points on plain arrays, the state in MaterialStateStorage
+  const double         V0 = 1e-9;
+  PetscReal            Fp[18]{}, sigma_p[18]{}, Lp[18]{}, m[2], V[2], Vr[2], T[2], c[2]{}, e[2]{};
+  PetscInt             mat[2] = {0, 0};
+  PetscInt64           pid[2] = {0, 1};
+  MaterialStateStorage storage;
+  ASSERT_EQ(storage.Allocate(material->StateFields(), 2), 0);
+  for (int p = 0; p < 2; ++p) {
+    for (int a = 0; a < 9; ++a) Fp[9 * p + a] = (a % 4 == 0) ? 1 : 0;
+    V[p] = Vr[p] = V0;
+    m[p]         = 1840 * V0;
+    T[p]         = 300;
   }
-  ASSERT_EQ(material->InitializeState(sw, 0, 2), 0);
+  MaterialPointFields mp;
+  mp.n = 2, mp.material = mat, mp.L = Lp, mp.F = Fp, mp.stress = sigma_p, mp.mass = m, mp.volume = V, mp.volume0 = Vr, mp.temperature = T, mp.wave_speed = c, mp.internal_energy = e, mp.id = pid, mp.state = &storage.State();
+  ASSERT_EQ(material->InitializeState(mp, 0, 2), 0);
   const double rate = 1e3, omega = 1e6, dt = 5e-8;
   M3           F_load = M3::Identity();
   auto         step   = [&](const M3 L[2], const M3 F[2], double t) {
-    SwarmAccess         f(sw);
-    MaterialPointFields mp;
-    PetscInt           *mat = nullptr;
-    PetscReal          *Fp = nullptr, *Lp = nullptr, *V = nullptr, *T = nullptr, *sigma = nullptr, *m = nullptr, *c = nullptr, *e = nullptr;
-    EXPECT_EQ(f.Get(field::material, &mat) || f.Get(field::F, &Fp) || f.Get(field::L, &Lp) || f.Get(field::volume, &V) || f.Get(field::temperature, &T) || f.Get(field::stress, &sigma) ||
-                f.Get(field::mass, &m) || f.Get(field::wave_speed, &c) || f.Get(field::internal_energy, &e),
-              0);
     for (int p = 0; p < 2; ++p) {
       Eigen::Map<M3>(Lp + 9 * p) = L[p];
       Eigen::Map<M3>(Fp + 9 * p) = F[p];
       V[p]                       = V0 * F[p].determinant();
     }
-    mp.n = 2, mp.swarm = sw, mp.time = t, mp.material = mat, mp.L = Lp, mp.F = Fp, mp.stress = sigma, mp.mass = m, mp.volume = V, mp.temperature = T, mp.wave_speed = c, mp.internal_energy = e;
-    EXPECT_EQ(f.RestoreAll(), 0);
+    mp.time = t;
     EXPECT_EQ(material->UpdateStress(mp, 0, dt), 0);
   };
   double t = 0;
@@ -392,16 +368,10 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
   M3     R = M3::Identity();
   R(0, 0) = R(1, 1) = std::cos(theta);
   R(0, 1) = -std::sin(theta), R(1, 0) = std::sin(theta);
-  PetscReal *sigma, *c, *T;
-  ASSERT_EQ(DMSwarmGetField(sw, field::stress, nullptr, nullptr, (void **)&sigma), 0);
-  const M3 spun = Eigen::Map<M3>(sigma), still = Eigen::Map<M3>(sigma + 9);
-  ASSERT_EQ(DMSwarmRestoreField(sw, field::stress, nullptr, nullptr, (void **)&sigma), 0);
-  ASSERT_EQ(DMSwarmGetField(sw, "crack_radius", nullptr, nullptr, (void **)&c), 0);
-  const double c_spun = c[0], c_still = c[1];
-  ASSERT_EQ(DMSwarmRestoreField(sw, "crack_radius", nullptr, nullptr, (void **)&c), 0);
-  ASSERT_EQ(DMSwarmGetField(sw, field::temperature, nullptr, nullptr, (void **)&T), 0);
-  const double T_spun = T[0], T_still = T[1];
-  ASSERT_EQ(DMSwarmRestoreField(sw, field::temperature, nullptr, nullptr, (void **)&T), 0);
+  PetscReal *crack = nullptr;
+  ASSERT_EQ(storage.State().Get("crack_radius", &crack), 0);
+  const M3     spun = Eigen::Map<M3>(sigma_p), still = Eigen::Map<M3>(sigma_p + 9);
+  const double c_spun = crack[0], c_still = crack[1], T_spun = T[0], T_still = T[1];
   const double scale = still.cwiseAbs().maxCoeff();
   Eigen::SelfAdjointEigenSolver<M3> e_spun(spun), e_still(still);
   const double err_tensor = (R.transpose() * spun * R - still).cwiseAbs().maxCoeff() / scale;
@@ -415,6 +385,5 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
   EXPECT_LT(std::fabs(c_spun - c_still) / c_still, 1e-14);
   EXPECT_LT(std::fabs(T_spun - T_still) / T_still, 1e-14);
   EXPECT_GT(c_still, 3.5e-5); // the cracks grew: the check sees the crack state too
-  EXPECT_EQ(DMDestroy(&sw), 0);
   delete material;
 }

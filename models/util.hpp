@@ -1,4 +1,4 @@
-// Small helpers for options handling shared by the components.
+// Small helpers for options handling shared by the components and the models.
 #pragma once
 #include "petsc_compat.hpp"
 #include <petscoptions.h>
