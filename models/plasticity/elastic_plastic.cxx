@@ -149,6 +149,18 @@ struct RegularizationFields {
   }
 };
 
+// Per-chunk values that the steps of UpdateStress hand on to each other.
+struct ChunkScratch {
+  PetscReal R_next[kChunk][9];          // R_{n+1} of the chunk's points (row-major)
+  PetscReal omega_old[kChunk];          // crack band: the softening at t_n (0 otherwise)
+  PetscReal omega[kChunk];              // crack band: the softening at t_{n+1}
+  PetscReal failed_porosity[kChunk];    // a failed point's porosity, set aside during the return
+  PetscReal porosity_old[kChunk];       // f before step 5
+  PetscReal porosity_increment[kChunk]; // Delta f of the step (growth + nucleation)
+  PetscReal plastic_work[kChunk];       // J/kg
+  bool      newly_failed[kChunk];
+};
+
 enum FailureBits : int { FailMelt = 1, FailTepla = 2, FailPorosity = 4, FailStability = 8, FailStrength = 16 };
 enum class FailureResponse : int { None = 0, ZeroStress = 1, NoTension = 2, NoShear = 3 };
 enum class Regularization : int { None = 0, Nonlocal = 1, CrackBand = 2 };
@@ -371,252 +383,306 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
+  // Algorithm 1 over this material's particles, a chunk of kChunk points at a time; each numbered
+  // step (the header's list) is one kernel over the chunk.
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
-    PlasticState state;
-    Chunk        c;
+    PlasticState         state;
+    RegularizationFields reg;
+    Chunk                c;
+    ChunkScratch         scratch;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(state.Get(*mp.state));
-    auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
-    RegularizationFields reg;
     PetscCall(reg.Get(mp));
-    const bool crack_band = regularization == Regularization::CrackBand;
     // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
     // neighbours, so there the local increments are their own average
     const bool nonlocal = regularization == Regularization::Nonlocal && nonlocal_active_;
-    if (nonlocal) // the averages of the previous step's increments (src/mpm/nonlocal.cxx)
-      for (PetscInt q = 0; q < mp.n; ++q) {
-        if (mp.material[q] != id) continue;
-        PetscReal *avg = reg.average + kNonlocalComponents * q;
-        reg.strain[q] += avg[0];
-        f[q]   = PetscMin(PetscMax(f[q] + avg[1], 0.0), 1.0);
-        avg[0] = avg[1] = 0;
-      }
+    if (nonlocal) TakeNonlocalAverages(mp, id, state, reg);
     c.dt             = dt;
     c.density0       = density_;
     c.taylor_quinney = taylor_quinney;
     c.adiabatic      = adiabatic ? 1 : 0;
-    const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
-    PetscReal       R_next[kChunk][9]; // R_{n+1} of the chunk's points (row-major)
-    const int       num_history = flow->NumHistory(); // the history entries the flow model uses (the others are never read)
-    PetscReal       omega_old[kChunk]; // crack band: the softening at t_n (0 otherwise)
-    PetscInt        p = 0;
+    PetscInt p       = 0;
     while (p < mp.n) {
       // gather the next chunk of this material's particles
       c.n = 0;
       for (; p < mp.n && c.n < kChunk; ++p)
         if (mp.material[p] == id) c.index[c.n++] = p;
       if (!c.n) break;
-      // 1. kinematics in the co-rotated frame (scalar code: see RotateToFrame)
-      for (int k = 0; k < c.n; ++k) {
-        const PetscInt   q     = c.index[k];
-        const PetscReal *L     = mp.L + 9 * q, *R_old = R + 9 * q;
-        PetscReal       *R_new = R_next[k];
-        if (!PolarRotationWarm(mp.F + 9 * q, R_old, R_new)) { // warm start: R moves little per step
-          Mat3Map R_fallback(R_new);
-          R_fallback = PolarRotation(Mat3CMap(mp.F + 9 * q));
-        }
-        // D_hat = (R_old^T D R_old + R_new^T D R_new)/2, D = sym L
-        const PetscReal D_lab[9] = {L[0], 0.5 * (L[1] + L[3]), 0.5 * (L[2] + L[6]), 0.5 * (L[3] + L[1]), L[4], 0.5 * (L[5] + L[7]), 0.5 * (L[6] + L[2]), 0.5 * (L[7] + L[5]), L[8]};
-        PetscReal      *Dh       = c.D_hat[k];
-        {
-          const SymmetricTensor d_old = RotatedToFrame(R_old, D_lab), d_new = RotatedToFrame(R_new, D_lab);
-          StoreSymmetric({0.5 * (d_old.xx + d_new.xx), 0.5 * (d_old.xy + d_new.xy), 0.5 * (d_old.xz + d_new.xz), 0.5 * (d_old.yy + d_new.yy), 0.5 * (d_old.yz + d_new.yz), 0.5 * (d_old.zz + d_new.zz)}, Dh);
-        }
-        // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
-        omega_old[k]     = crack_band && !failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
-        PetscReal *sh    = c.deviator[k]; // s_n for now
-        RotateToFrame(R_old, mp.stress + 9 * q, sh);
-        if (omega_old[k] != 0) // (nine divisions by 1 spared elsewhere)
-          for (int a = 0; a < 9; ++a) sh[a] /= 1 - omega_old[k];
-        const PetscReal mean = (sh[0] + sh[4] + sh[8]) / 3, trD = Dh[0] + Dh[4] + Dh[8];
-        sh[0] -= mean;
-        sh[4] -= mean;
-        sh[8] -= mean;
-        const PetscReal Ddev0 = Dh[0] - trD / 3, Ddev1 = Dh[4] - trD / 3, Ddev2 = Dh[8] - trD / 3;
-        const PetscReal Ddev_squared = Ddev0 * Ddev0 + Ddev1 * Ddev1 + Ddev2 * Ddev2 + 2 * (Dh[1] * Dh[1] + Dh[2] * Dh[2] + Dh[5] * Dh[5]);
-        // the EOS sees the elastic density: the plastic dilatation of the voids (GTN) is not
-        // elastic compression, rho_e = rho exp(tr eps_p)
-        c.density[k]             = mp.mass[q] / mp.volume[q] * (dilatation[q] != 0 ? std::exp(dilatation[q]) : 1);
-        c.temperature[k]         = mp.temperature[q];
-        c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
-        c.trace_D[k]             = trD;
-        c.total_rate[k]          = std::sqrt(2.0 / 3.0 * Ddev_squared);
-        c.mean_stress_old[k]     = mean;
-        c.plastic_strain[k]      = eps[q];
-        c.plastic_strain_rate[k] = rate[q];
-        c.porosity[k]            = f[q];
-        c.damage[k]              = D[q];
-        for (int h = 0; h < num_history; ++h) c.history[k][h] = history[kMaxHistory * q + h];
-        c.unstable[k] = 0;
-      }
-      // 2. state: EOS, melt, shear modulus, specific heat
-      eos->Evaluate(c);
+      Kinematics(mp, state, reg, c, scratch);           // 1.
+      eos->Evaluate(c);                                 // 2. EOS, melt, shear modulus, specific heat
       melt->Evaluate(c);
       shear->Evaluate(c);
       specific_heat->Evaluate(c);
-      // 3. trial deviator; melted points carry no deviator
-      for (int k = 0; k < c.n; ++k) { // (plain arrays: the Eigen temporaries were not inlined)
-        PetscReal *s = c.deviator[k];
-        if (c.temperature[k] >= c.melt_temperature[k]) {
-          for (int a = 0; a < 9; ++a) s[a] = 0;
-          continue;
-        }
-        const PetscReal *Dh = c.D_hat[k], third = c.trace_D[k] / 3, factor = 2 * c.shear_modulus[k] * dt;
-        for (int a = 0; a < 9; ++a) s[a] += factor * (a % 4 ? Dh[a] : Dh[a] - third); // 2 mu dt dev(D_hat)
-      }
-      // 4. yield test and return mapping (flow model inlined). A failed point with a response keeps
-      // at most its pressure: it takes no trial deviator and its voids no longer grow, so it goes
-      // through the return as a dense elastic point (a swollen fragment at porosity 1 in tension
-      // would otherwise ask GTN for a return that does not exist); its porosity is restored after.
-      PetscReal failed_porosity[kChunk];
-      if (failure_response != FailureResponse::None)
-        for (int k = 0; k < c.n; ++k)
-          if (failed[c.index[k]]) {
-            Mat3Map(c.deviator[k]).setZero();
-            failed_porosity[k] = c.porosity[k];
-            c.porosity[k]      = 0;
-          }
-      {
-        c.failed_point            = -1;
-        const PetscErrorCode ierr = flow->Return(c, settings);
-        if (ierr && c.failed_point >= 0) {
-          const int k = c.failed_point;
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "Material %s, t = %g s, particle index %" PetscInt_FMT ": return mapping failed at plastic strain %.17g, porosity %.17g, trial pressure %.17g Pa, trial q %.17g Pa (rate %g 1/s), T %.17g K, mu %.17g Pa, K %.17g Pa, density %.17g, dt %.17g s\n", Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k], (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k], (double)c.dt));
-        }
-        PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
-      }
-      if (failure_response != FailureResponse::None)
-        for (int k = 0; k < c.n; ++k)
-          if (failed[c.index[k]]) c.porosity[k] = failed_porosity[k];
-      // 5. porosity, temperature, triaxiality; then damage and stability
-      PetscReal porosity_old[kChunk], plastic_work[kChunk], porosity_increment[kChunk];
-      for (int k = 0; k < c.n; ++k) porosity_old[k] = c.porosity[k];
-      for (int k = 0; k < c.n; ++k) {
-        const PetscReal de = c.delta_plastic_strain[k];
-        PetscReal       df = 0;
-        if (porosity_growth) df += (1 - c.porosity[k]) * c.trace_plastic_strain[k];
-        if (porosity_nucleation && de > 0 && !(nucleation_tension_only && c.pressure[k] >= 0)) {
-          const PetscReal z = (c.plastic_strain[k] - nucleation_strain) / nucleation_deviation;
-          df += nucleation_amplitude * std::exp(-0.5 * z * z) * de;
-        }
-        // crack band: once softening, omega carries the damage and the voids stop growing (else
-        // the local void softening would go on inside the band, with no length)
-        if (crack_band && reg.limit[c.index[k]] > 0) df = 0;
-        porosity_increment[k] = df;
-        if (!nonlocal) c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0); // nonlocal: the average adds it
-        // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
-        // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
-        const PetscReal matrix = settings.yield == YieldType::GTN ? 1 - porosity_old[k] : 1;
-        plastic_work[k]        = matrix * c.flow_stress[k] * de / c.density[k]; // J/kg; times mass below
-        // A point that failed with zero_stress carries no stress, so it does no work: neither plastic
-        // heating nor the isentropic cooling -Gamma T tr(D) dt, which would take a failed fragment
-        // that swells freely from 600 K to a few kelvin; its temperature stays as it failed, with or
-        // without a gas around it (the coupling takes its mass and temperature, never its volume).
-        // The same holds for no_tension while the point opens (it carries no pressure then) and for
-        // every response's deviator; a failed point still heats when it is compressed under pressure.
-        const bool holds_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && c.trace_D[k] < 0);
-        const bool inert          = failure_response != FailureResponse::None && failed[c.index[k]] && !holds_pressure;
-        if (adiabatic && !inert) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * dt;
-        c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
-      }
-      damage->Evaluate(c);
-      for (auto &check : stability) check->Evaluate(c);
-      // 6-7. failure tags, stress in the laboratory frame, work, wave speed; write back
-      for (int k = 0; k < c.n; ++k) {
-        const PetscInt q = c.index[k];
-        int            bits = 0;
-        if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
-        if (failure_criteria & FailTepla) { // (only the criteria asked for are evaluated: two divisions per point)
-          const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
-          PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
-          if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
-          else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
-          if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
-        }
-        if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
-        if (c.unstable[k]) bits |= FailStability;
-        if (c.flow_stress[k] <= 0) bits |= FailStrength;
-        bits &= failure_criteria;
-        PetscReal omega = 0; // crack band: softening at t_{n+1}
-        if (crack_band && !failed[q]) {
-          if (bits && reg.limit[q] == 0) { // the criterion starts the softening: u_f = 2 G_f / sigma_i
-            const PetscReal sigma_i = (settings.yield == YieldType::GTN ? 1 - c.porosity[k] : 1) * c.flow_stress[k];
-            reg.limit[q]            = 2 * fracture_energy / PetscMax(sigma_i, 1.0);
-            reg.bits[q]             = bits;
-          }
-          if (reg.limit[q] > 0) {
-            reg.disp[q] += reg.Size(q) * c.delta_plastic_strain[k]; // h_p Delta eps_p
-            omega = PetscMin(reg.disp[q] / reg.limit[q], 1.0);
-          }
-          bits = omega >= 1 ? (int)reg.bits[q] : 0; // fails once the softening is complete
-        }
-        bool newly_failed = false;
-        if (bits && !failed[q]) {
-          failed[q]    = bits;
-          t_fail[q]    = mp.time;
-          newly_failed = true;
-        }
-        PetscReal s_hat[9]; // s - p I
-        for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 ? c.deviator[k][a] : c.deviator[k][a] - c.pressure[k];
-        if (failed[q] && failure_response != FailureResponse::None) {
-          // the response: drop what the failed point cannot carry; count the elastic energy that goes
-          // (q^2/(6 mu) + p^2/(2 K) per unit volume for the dropped parts)
-          const PetscReal q_eq = c.equivalent_stress[k], p = c.pressure[k], mu = c.shear_modulus[k], K = c.bulk_modulus[k];
-          PetscReal       dropped = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
-          const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
-          if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
-          if (newly_failed && !crack_band) released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release (crack band: counted below)
-          for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 || !keep_pressure ? 0.0 : 0.0 - p; // (as zeroing, then subtracting p)
-          Mat3Map(c.deviator[k]).setZero();
-          c.equivalent_stress[k] = 0;
-        }
-        // crack band: from the criterion to the end of the softening (its last step included) the
-        // work is the band's dissipation
-        const bool softening = crack_band && reg.limit[q] > 0 && (!failed[q] || newly_failed);
-        if (crack_band && !failed[q]) {
-          for (int a = 0; a < 9; ++a) s_hat[a] *= 1 - omega; // the softened stress; the particle state stays the intact one
-          reg.omega[q] = omega;
-        }
-        const PetscReal elastic_old = elastic[q];
-        {
-          const PetscReal p = -Mat3CMap(s_hat).trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
-          PetscReal       dev[9];
-          for (int a = 0; a < 9; ++a) dev[a] = a % 4 ? s_hat[a] : s_hat[a] + p;
-          elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * Mat3CMap(dev).squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
-        }
-        PetscReal *sigma = mp.stress + 9 * q, sigma_old[9];
-        for (int a = 0; a < 9; ++a) sigma_old[a] = sigma[a];
-        RotateFromFrame(R_next[k], s_hat, sigma);
-        for (int a = 0; a < 9; ++a) R[9 * q + a] = R_next[k][a];
-        const PetscReal stress_work = StressWork(sigma_old, sigma, mp.L + 9 * q, mp.volume[q], dt);
-        mp.internal_energy[q] += stress_work;
-        if (softening) { // crack band: what the softening band dissipates, stress work less stored elastic energy
-          released[q] += stress_work - (elastic[q] - elastic_old);
-          plastic_work[k] = 0;
-        }
-        if (reg.source && regularization == Regularization::Nonlocal) { // the drivers for the average
-          PetscReal *src = reg.source + (1 + kNonlocalComponents) * q;
-          src[0]         = failed[q] && failure_response != FailureResponse::None ? 0 : mp.mass[q];
-          src[1]         = c.damage[k] - D[q]; // Delta D of this step (D[q] is still D_n)
-          src[2]         = porosity_increment[k];
-        }
-        mp.temperature[q] = c.temperature[k];
-        mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
-        eps[q]            = c.plastic_strain[k];
-        work[q] += plastic_work[k] * mp.mass[q];
-        if (adiabatic) heat[q] += taylor_quinney * plastic_work[k] * mp.mass[q];
-        dilatation[q] += c.trace_plastic_strain[k];
-        rate[q]           = c.plastic_strain_rate[k];
-        f[q]              = c.porosity[k];
-        D[q]              = c.damage[k];
-        sigma_f[q]        = c.flow_stress[k];
-        unstable[q]       = c.unstable[k];
-        for (int h = 0; h < num_history; ++h) history[kMaxHistory * q + h] = c.history[k][h];
-      }
+      TrialDeviator(c);                                 // 3.
+      PetscCall(Return(mp, state, c, scratch));         // 4.
+      EvolveInternalVariables(state, reg, nonlocal, c, scratch); // 5.
+      Failure(mp, state, reg, nonlocal, c, scratch);    // 6. (with the crack band's softening)
+      StressAndEnergy(mp, state, reg, c, scratch);      // 7.
+      WriteState(mp, state, c, scratch);
     }
     PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  // The averages of the previous step's increments (src/mpm/nonlocal.cxx) join the drivers.
+  void TakeNonlocalAverages(const MaterialPointFields &mp, PetscInt id, const PlasticState &state, const RegularizationFields &reg) const
+  {
+    for (PetscInt q = 0; q < mp.n; ++q) {
+      if (mp.material[q] != id) continue;
+      PetscReal *avg = reg.average + kNonlocalComponents * q;
+      reg.strain[q] += avg[0];
+      state.f[q] = PetscMin(PetscMax(state.f[q] + avg[1], 0.0), 1.0);
+      avg[0] = avg[1] = 0;
+    }
+  }
+
+  // 1. Kinematics in the co-rotated frame (scalar code: see RotateToFrame) and the state at t_n.
+  void Kinematics(const MaterialPointFields &mp, const PlasticState &state, const RegularizationFields &reg, Chunk &c, ChunkScratch &scratch) const
+  {
+    const bool crack_band  = regularization == Regularization::CrackBand;
+    const int  num_history = flow->NumHistory(); // the history entries the flow model uses (the others are never read)
+    for (int k = 0; k < c.n; ++k) {
+      const PetscInt   q     = c.index[k];
+      const PetscReal *L     = mp.L + 9 * q, *R_old = state.R + 9 * q;
+      PetscReal       *R_new = scratch.R_next[k];
+      if (!PolarRotationWarm(mp.F + 9 * q, R_old, R_new)) { // warm start: R moves little per step
+        Mat3Map R_fallback(R_new);
+        R_fallback = PolarRotation(Mat3CMap(mp.F + 9 * q));
+      }
+      // D_hat = (R_old^T D R_old + R_new^T D R_new)/2, D = sym L
+      const PetscReal D_lab[9] = {L[0], 0.5 * (L[1] + L[3]), 0.5 * (L[2] + L[6]), 0.5 * (L[3] + L[1]), L[4], 0.5 * (L[5] + L[7]), 0.5 * (L[6] + L[2]), 0.5 * (L[7] + L[5]), L[8]};
+      PetscReal      *Dh       = c.D_hat[k];
+      {
+        const SymmetricTensor d_old = RotatedToFrame(R_old, D_lab), d_new = RotatedToFrame(R_new, D_lab);
+        StoreSymmetric({0.5 * (d_old.xx + d_new.xx), 0.5 * (d_old.xy + d_new.xy), 0.5 * (d_old.xz + d_new.xz), 0.5 * (d_old.yy + d_new.yy), 0.5 * (d_old.yz + d_new.yz), 0.5 * (d_old.zz + d_new.zz)}, Dh);
+      }
+      // crack band: the stored stress is (1 - omega) times the intact stress; recover the latter
+      scratch.omega_old[k] = crack_band && !state.failed[q] && reg.limit[q] > 0 ? reg.omega[q] : 0;
+      PetscReal *sh        = c.deviator[k]; // s_n for now
+      RotateToFrame(R_old, mp.stress + 9 * q, sh);
+      if (scratch.omega_old[k] != 0) // (nine divisions by 1 spared elsewhere)
+        for (int a = 0; a < 9; ++a) sh[a] /= 1 - scratch.omega_old[k];
+      const PetscReal mean = (sh[0] + sh[4] + sh[8]) / 3, trD = Dh[0] + Dh[4] + Dh[8];
+      sh[0] -= mean;
+      sh[4] -= mean;
+      sh[8] -= mean;
+      const PetscReal Ddev0 = Dh[0] - trD / 3, Ddev1 = Dh[4] - trD / 3, Ddev2 = Dh[8] - trD / 3;
+      const PetscReal Ddev_squared = Ddev0 * Ddev0 + Ddev1 * Ddev1 + Ddev2 * Ddev2 + 2 * (Dh[1] * Dh[1] + Dh[2] * Dh[2] + Dh[5] * Dh[5]);
+      // the EOS sees the elastic density: the plastic dilatation of the voids (GTN) is not
+      // elastic compression, rho_e = rho exp(tr eps_p)
+      c.density[k]             = mp.mass[q] / mp.volume[q] * (state.dilatation[q] != 0 ? std::exp(state.dilatation[q]) : 1);
+      c.temperature[k]         = mp.temperature[q];
+      c.specific_energy[k]     = mp.internal_energy[q] / mp.mass[q];
+      c.trace_D[k]             = trD;
+      c.total_rate[k]          = std::sqrt(2.0 / 3.0 * Ddev_squared);
+      c.mean_stress_old[k]     = mean;
+      c.plastic_strain[k]      = state.eps[q];
+      c.plastic_strain_rate[k] = state.rate[q];
+      c.porosity[k]            = state.f[q];
+      c.damage[k]              = state.D[q];
+      for (int h = 0; h < num_history; ++h) c.history[k][h] = state.history[kMaxHistory * q + h];
+      c.unstable[k] = 0;
+    }
+  }
+
+  // 3. Trial deviator s_tr = s_n + 2 mu dt dev(D_hat); melted points carry no deviator.
+  static void TrialDeviator(Chunk &c)
+  {
+    for (int k = 0; k < c.n; ++k) { // (plain arrays: the Eigen temporaries were not inlined)
+      PetscReal *s = c.deviator[k];
+      if (c.temperature[k] >= c.melt_temperature[k]) {
+        for (int a = 0; a < 9; ++a) s[a] = 0;
+        continue;
+      }
+      const PetscReal *Dh = c.D_hat[k], third = c.trace_D[k] / 3, factor = 2 * c.shear_modulus[k] * c.dt;
+      for (int a = 0; a < 9; ++a) s[a] += factor * (a % 4 ? Dh[a] : Dh[a] - third); // 2 mu dt dev(D_hat)
+    }
+  }
+
+  // 4. Yield test and return mapping (flow model inlined). A failed point with a response keeps at
+  // most its pressure: it takes no trial deviator and its voids no longer grow, so it goes through
+  // the return as a dense elastic point (a swollen fragment at porosity 1 in tension would otherwise
+  // ask GTN for a return that does not exist); its porosity is restored after.
+  PetscErrorCode Return(const MaterialPointFields &mp, const PlasticState &state, Chunk &c, ChunkScratch &scratch) const
+  {
+    PetscFunctionBeginUser;
+    if (failure_response != FailureResponse::None)
+      for (int k = 0; k < c.n; ++k)
+        if (state.failed[c.index[k]]) {
+          Mat3Map(c.deviator[k]).setZero();
+          scratch.failed_porosity[k] = c.porosity[k];
+          c.porosity[k]              = 0;
+        }
+    c.failed_point            = -1;
+    const PetscErrorCode ierr = flow->Return(c, settings);
+    if (ierr && c.failed_point >= 0) {
+      const int k = c.failed_point;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Material %s, t = %g s, particle index %" PetscInt_FMT ": return mapping failed at plastic strain %.17g, porosity %.17g, trial pressure %.17g Pa, trial q %.17g Pa (rate %g 1/s), T %.17g K, mu %.17g Pa, K %.17g Pa, density %.17g, dt %.17g s\n", Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k], (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k], (double)c.dt));
+    }
+    PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
+    if (failure_response != FailureResponse::None)
+      for (int k = 0; k < c.n; ++k)
+        if (state.failed[c.index[k]]) c.porosity[k] = scratch.failed_porosity[k];
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+
+  // 5. Porosity (eqs. 15-17), temperature (eq. 18 and the isentropic term), triaxiality; then
+  // damage (eqs. 20-21) and the stability checks (eqs. 23-24).
+  void EvolveInternalVariables(const PlasticState &state, const RegularizationFields &reg, bool nonlocal, Chunk &c, ChunkScratch &scratch) const
+  {
+    const bool      crack_band           = regularization == Regularization::CrackBand;
+    const PetscReal nucleation_amplitude = nucleation_fraction / (nucleation_deviation * std::sqrt(2 * PETSC_PI));
+    for (int k = 0; k < c.n; ++k) scratch.porosity_old[k] = c.porosity[k];
+    for (int k = 0; k < c.n; ++k) {
+      const PetscReal de = c.delta_plastic_strain[k];
+      PetscReal       df = 0;
+      if (porosity_growth) df += (1 - c.porosity[k]) * c.trace_plastic_strain[k];
+      if (porosity_nucleation && de > 0 && !(nucleation_tension_only && c.pressure[k] >= 0)) {
+        const PetscReal z = (c.plastic_strain[k] - nucleation_strain) / nucleation_deviation;
+        df += nucleation_amplitude * std::exp(-0.5 * z * z) * de;
+      }
+      // crack band: once softening, omega carries the damage and the voids stop growing (else
+      // the local void softening would go on inside the band, with no length)
+      if (crack_band && reg.limit[c.index[k]] > 0) df = 0;
+      scratch.porosity_increment[k] = df;
+      if (!nonlocal) c.porosity[k] = PetscMin(PetscMax(c.porosity[k] + df, 0.0), 1.0); // nonlocal: the average adds it
+      // eq. 18 plastic heating plus the isentropic term of the Mie-Gruneisen EOS
+      // the plastic work per unit volume is sigma : d eps_p = (1 - f) sigma_f d eps_M for GTN
+      const PetscReal matrix  = settings.yield == YieldType::GTN ? 1 - scratch.porosity_old[k] : 1;
+      scratch.plastic_work[k] = matrix * c.flow_stress[k] * de / c.density[k]; // J/kg; times mass below
+      // A point that failed with zero_stress carries no stress, so it does no work: neither plastic
+      // heating nor the isentropic cooling -Gamma T tr(D) dt, which would take a failed fragment
+      // that swells freely from 600 K to a few kelvin; its temperature stays as it failed, with or
+      // without a gas around it (the coupling takes its mass and temperature, never its volume).
+      // The same holds for no_tension while the point opens (it carries no pressure then) and for
+      // every response's deviator; a failed point still heats when it is compressed under pressure.
+      const bool holds_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && c.trace_D[k] < 0);
+      const bool inert          = failure_response != FailureResponse::None && state.failed[c.index[k]] && !holds_pressure;
+      if (adiabatic && !inert) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * c.dt;
+      c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));
+    }
+    damage->Evaluate(c);
+    for (auto &check : stability) check->Evaluate(c);
+  }
+
+  // 6. Failure: the criteria asked for, then (crack band) the softening they start, and the tag
+  // with its time once a point fails.
+  void Failure(const MaterialPointFields &mp, const PlasticState &state, const RegularizationFields &reg, bool nonlocal, const Chunk &c, ChunkScratch &scratch) const
+  {
+    const bool crack_band = regularization == Regularization::CrackBand;
+    for (int k = 0; k < c.n; ++k) {
+      const PetscInt q    = c.index[k];
+      int            bits = 0;
+      if (c.temperature[k] >= c.melt_temperature[k]) bits |= FailMelt;
+      if (failure_criteria & FailTepla) { // (only the criteria asked for are evaluated: two divisions per point)
+        const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
+        PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
+        if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
+        else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
+        if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
+      }
+      if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
+      if (c.unstable[k]) bits |= FailStability;
+      if (c.flow_stress[k] <= 0) bits |= FailStrength;
+      bits &= failure_criteria;
+      PetscReal omega = 0; // crack band: softening at t_{n+1}
+      if (crack_band && !state.failed[q]) {
+        if (bits && reg.limit[q] == 0) { // the criterion starts the softening: u_f = 2 G_f / sigma_i
+          const PetscReal sigma_i = (settings.yield == YieldType::GTN ? 1 - c.porosity[k] : 1) * c.flow_stress[k];
+          reg.limit[q]            = 2 * fracture_energy / PetscMax(sigma_i, 1.0);
+          reg.bits[q]             = bits;
+        }
+        if (reg.limit[q] > 0) {
+          reg.disp[q] += reg.Size(q) * c.delta_plastic_strain[k]; // h_p Delta eps_p
+          omega = PetscMin(reg.disp[q] / reg.limit[q], 1.0);
+        }
+        bits = omega >= 1 ? (int)reg.bits[q] : 0; // fails once the softening is complete
+      }
+      scratch.omega[k]        = omega;
+      scratch.newly_failed[k] = false;
+      if (bits && !state.failed[q]) {
+        state.failed[q]         = bits;
+        state.t_fail[q]         = mp.time;
+        scratch.newly_failed[k] = true;
+      }
+    }
+  }
+
+  // 7. The failure response (what a failed point cannot carry is dropped, its stored elastic energy
+  // counted as released), the crack band's softened stress, sigma_{n+1} = R_{n+1} (s - p I)
+  // R_{n+1}^T, the stress work, and the energies: stored elastic, the band's dissipation.
+  void StressAndEnergy(const MaterialPointFields &mp, const PlasticState &state, const RegularizationFields &reg, const Chunk &c, ChunkScratch &scratch) const
+  {
+    const bool crack_band = regularization == Regularization::CrackBand;
+    for (int k = 0; k < c.n; ++k) {
+      const PetscInt q            = c.index[k];
+      const bool     newly_failed = scratch.newly_failed[k];
+      PetscReal      s_hat[9]; // s - p I
+      for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 ? c.deviator[k][a] : c.deviator[k][a] - c.pressure[k];
+      if (state.failed[q] && failure_response != FailureResponse::None) {
+        // the response: drop what the failed point cannot carry; count the elastic energy that goes
+        // (q^2/(6 mu) + p^2/(2 K) per unit volume for the dropped parts)
+        const PetscReal q_eq = c.equivalent_stress[k], p = c.pressure[k], mu = c.shear_modulus[k], K = c.bulk_modulus[k];
+        PetscReal       dropped = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
+        const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
+        if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
+        if (newly_failed && !crack_band) state.released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release (crack band: counted below)
+        for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 || !keep_pressure ? 0.0 : 0.0 - p; // (as zeroing, then subtracting p)
+      }
+      // crack band: from the criterion to the end of the softening (its last step included) the
+      // work is the band's dissipation
+      const bool softening = crack_band && reg.limit[q] > 0 && (!state.failed[q] || newly_failed);
+      if (crack_band && !state.failed[q]) {
+        for (int a = 0; a < 9; ++a) s_hat[a] *= 1 - scratch.omega[k]; // the softened stress; the particle state stays the intact one
+        reg.omega[q] = scratch.omega[k];
+      }
+      const PetscReal elastic_old = state.elastic[q];
+      {
+        const PetscReal p = -Mat3CMap(s_hat).trace() / 3, mu = c.shear_modulus[k], K = c.bulk_modulus[k];
+        PetscReal       dev[9];
+        for (int a = 0; a < 9; ++a) dev[a] = a % 4 ? s_hat[a] : s_hat[a] + p;
+        state.elastic[q] = ((K > 0 ? p * p / (2 * K) : 0) + (mu > 0 ? 0.25 * Mat3CMap(dev).squaredNorm() / mu : 0)) * mp.volume[q]; // s:s/(4 mu) = q^2/(6 mu)
+      }
+      PetscReal *sigma = mp.stress + 9 * q, sigma_old[9];
+      for (int a = 0; a < 9; ++a) sigma_old[a] = sigma[a];
+      RotateFromFrame(scratch.R_next[k], s_hat, sigma);
+      for (int a = 0; a < 9; ++a) state.R[9 * q + a] = scratch.R_next[k][a];
+      const PetscReal stress_work = StressWork(sigma_old, sigma, mp.L + 9 * q, mp.volume[q], c.dt);
+      mp.internal_energy[q] += stress_work;
+      if (softening) { // crack band: what the softening band dissipates, stress work less stored elastic energy
+        state.released[q] += stress_work - (state.elastic[q] - elastic_old);
+        scratch.plastic_work[k] = 0;
+      }
+      if (reg.source && regularization == Regularization::Nonlocal) { // the drivers for the average
+        PetscReal *src = reg.source + (1 + kNonlocalComponents) * q;
+        src[0]         = state.failed[q] && failure_response != FailureResponse::None ? 0 : mp.mass[q];
+        src[1]         = c.damage[k] - state.D[q]; // Delta D of this step (D[q] is still D_n)
+        src[2]         = scratch.porosity_increment[k];
+      }
+    }
+  }
+
+  // The chunk's state at t_{n+1} back to the particles, with the wave speed sqrt((K + 4 mu/3)/rho)
+  // and the plastic work and heat.
+  void WriteState(const MaterialPointFields &mp, const PlasticState &state, const Chunk &c, const ChunkScratch &scratch) const
+  {
+    const int num_history = flow->NumHistory();
+    for (int k = 0; k < c.n; ++k) {
+      const PetscInt q  = c.index[k];
+      mp.temperature[q] = c.temperature[k];
+      mp.wave_speed[q]  = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
+      state.eps[q]      = c.plastic_strain[k];
+      state.work[q] += scratch.plastic_work[k] * mp.mass[q];
+      if (adiabatic) state.heat[q] += taylor_quinney * scratch.plastic_work[k] * mp.mass[q];
+      state.dilatation[q] += c.trace_plastic_strain[k];
+      state.rate[q]     = c.plastic_strain_rate[k];
+      state.f[q]        = c.porosity[k];
+      state.D[q]        = c.damage[k];
+      state.sigma_f[q]  = c.flow_stress[k];
+      state.unstable[q] = c.unstable[k];
+      for (int h = 0; h < num_history; ++h) state.history[kMaxHistory * q + h] = c.history[k][h];
+    }
   }
 
   std::vector<OutputField> OutputFields() const override
