@@ -48,9 +48,9 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.ev_stress));
   PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
   PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));
-  PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.ev_monitor));
+  PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.output.ev_monitor));
   PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.ev_loads));
-  PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.ev_output));
+  PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.output.ev_output));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -132,8 +132,8 @@ static PetscErrorCode WriteAllOutput(Simulation &sim, bool last)
   if (sim.ice && sim.grid.cells[1] == 1 && (sim.grid.dim == 2 || sim.grid.cells[2] == 1)) {
     char name[64];
     PetscCall(PetscSNPrintf(name, sizeof(name), "/profile_%06" PetscInt_FMT ".csv", sim.step));
-    PetscCall(IceWriteProfile(*sim.ice, sim.output_dir + name, sim.time, sim.step));
-    if (last) PetscCall(IceWriteProfile(*sim.ice, sim.output_dir + "/profile.csv", sim.time, sim.step));
+    PetscCall(IceWriteProfile(*sim.ice, sim.output.dir + name, sim.time, sim.step));
+    if (last) PetscCall(IceWriteProfile(*sim.ice, sim.output.dir + "/profile.csv", sim.time, sim.step));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -162,7 +162,7 @@ static PetscErrorCode Run(Simulation &sim)
     const bool last = stop || !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
-    if (last || (sim.output_interval > 0 && sim.step % sim.output_interval == 0)) {
+    if (last || (sim.output.interval > 0 && sim.step % sim.output.interval == 0)) {
       PetscCall(PetscLogStagePush(sim.stage_output));
       if (sim.HasParticles()) PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
       PetscCall(WriteAllOutput(sim, last));

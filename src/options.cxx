@@ -23,9 +23,9 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscStrncpy(buf, sim.scene.c_str(), sizeof(buf)));
   PetscCall(PetscOptionsString("-scene", "Name of the scene, reported in the summary", "", buf, buf, sizeof(buf), &set));
   sim.scene = buf;
-  PetscCall(PetscStrncpy(buf, sim.output_dir.c_str(), sizeof(buf)));
+  PetscCall(PetscStrncpy(buf, sim.output.dir.c_str(), sizeof(buf)));
   PetscCall(PetscOptionsString("-output_dir", "Folder for HDF5/XDMF output, monitor.csv and summary.json", "", buf, buf, sizeof(buf), &set));
-  sim.output_dir = buf;
+  sim.output.dir = buf;
 
   PetscCall(PetscOptionsReal("-final_time", "Final time (s), > 0", "", sim.final_time, &sim.final_time, nullptr));
   PetscCall(CheckRange(sim.comm, "-final_time", sim.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
@@ -87,14 +87,14 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 
-  PetscCall(PetscOptionsInt("-output_interval", "Steps between HDF5/XDMF outputs; 0 = first and last step only", "", sim.output_interval, &sim.output_interval, nullptr));
-  PetscCheck(sim.output_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -output_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.output_interval);
-  PetscCall(PetscOptionsInt("-monitor_interval", "Steps between monitor lines (energy, momentum) on screen and in monitor.csv; > 0", "", sim.monitor_interval, &sim.monitor_interval, nullptr));
-  PetscCheck(sim.monitor_interval > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_interval = %" PetscInt_FMT " is out of range: it must be > 0", sim.monitor_interval);
-  PetscCall(PetscOptionsBool("-output_grid", "Write grid fields (mass, velocity) with the particles", "", sim.write_grid, &sim.write_grid, nullptr));
-  PetscCall(PetscOptionsBool("-progress", "Print a progress line for long runs", "", sim.progress, &sim.progress, nullptr));
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-monitor_track_point", "Trace the particle nearest to this point at the start (m, 3 values; in 2-D the last is ignored)", sim.track_point, 3, &sim.track_by_point));
-  PetscCall(PetscOptionsInt("-monitor_track_pid", "Particle id whose position and displacement go into monitor.csv; -1 = none", "", sim.track_pid, &sim.track_pid, nullptr));
+  PetscCall(PetscOptionsInt("-output_interval", "Steps between HDF5/XDMF outputs; 0 = first and last step only", "", sim.output.interval, &sim.output.interval, nullptr));
+  PetscCheck(sim.output.interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -output_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.output.interval);
+  PetscCall(PetscOptionsInt("-monitor_interval", "Steps between monitor lines (energy, momentum) on screen and in monitor.csv; > 0", "", sim.output.monitor_interval, &sim.output.monitor_interval, nullptr));
+  PetscCheck(sim.output.monitor_interval > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_interval = %" PetscInt_FMT " is out of range: it must be > 0", sim.output.monitor_interval);
+  PetscCall(PetscOptionsBool("-output_grid", "Write grid fields (mass, velocity) with the particles", "", sim.output.write_grid, &sim.output.write_grid, nullptr));
+  PetscCall(PetscOptionsBool("-progress", "Print a progress line for long runs", "", sim.output.progress, &sim.output.progress, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-monitor_track_point", "Trace the particle nearest to this point at the start (m, 3 values; in 2-D the last is ignored)", sim.output.track_point, 3, &sim.output.track_by_point));
+  PetscCall(PetscOptionsInt("-monitor_track_pid", "Particle id whose position and displacement go into monitor.csv; -1 = none", "", sim.output.track_pid, &sim.output.track_pid, nullptr));
   PetscOptionsEnd();
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -3,6 +3,7 @@
 #pragma once
 #include "petsc_compat.hpp"
 #include "mpm/shape.hpp"
+#include "io/output.hpp"
 #include "../models/material.hpp"
 #include <petscdmda.h>
 #include <petscdmswarm.h>
@@ -146,7 +147,6 @@ struct Simulation {
 
   // Run control
   std::string scene = "unnamed";
-  std::string output_dir = "output";
   PetscReal   final_time = 1.0, cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
   PetscInt    max_steps = PETSC_MAX_INT;
   StepScheme  scheme = StepScheme::USL;
@@ -183,15 +183,7 @@ struct Simulation {
   }
   bool        TwoDeformableFields() const { return convert_failed || contact_material >= 0; }
 
-  // Output
-  PetscInt  output_interval = 0; // steps between HDF5 outputs (0: first and last only)
-  PetscInt  monitor_interval = 10;
-  PetscBool write_grid = PETSC_TRUE;
-  PetscBool progress = PETSC_TRUE;
-  PetscInt  track_pid = -1;      // particle id to trace in the monitor, -1 = none
-  PetscReal track_point[3] = {0, 0, 0};
-  PetscBool track_by_point = PETSC_FALSE; // trace the particle nearest to track_point at the start
-  std::vector<PetscInt> output_steps; std::vector<PetscReal> output_times;
+  Output output; // options, file series and monitor (src/io/)
 
   // Objects
   Grid                                    grid;
@@ -219,7 +211,7 @@ struct Simulation {
 
   // Events and stages for -log_view
   PetscLogStage stage_setup, stage_step, stage_output;
-  PetscLogEvent ev_p2g, ev_ghost_sums, ev_grid, ev_g2p, ev_xpic, ev_remap, ev_stress, ev_migrate, ev_output, ev_dt, ev_monitor, ev_loads;
+  PetscLogEvent ev_p2g, ev_ghost_sums, ev_grid, ev_g2p, ev_xpic, ev_remap, ev_stress, ev_migrate, ev_dt, ev_loads;
   PetscLogEvent ev_sort = 0, ev_balance = 0; // registered by CreateSwarm and CreateGrid
   PetscInt      sort_interval = 0;           // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
 
@@ -304,13 +296,6 @@ PetscErrorCode WriteGasOutput(Simulation &sim); // gas cells (gas_NNNNNN.h5, gas
 PetscErrorCode MonitorSetUp(Simulation &sim);
 PetscErrorCode Monitor(Simulation &sim, PetscBool force);
 PetscErrorCode WriteSummary(Simulation &sim);
-// State of the output series and monitor kept by src/io/, for the checkpoint (src/io/checkpoint.cxx).
-std::vector<std::array<PetscReal, 3>> OutputRecords();    // particles.xmf: step, time, particles
-void OutputSetRecords(const std::vector<std::array<PetscReal, 3>> &records);
-std::vector<std::array<PetscReal, 2>> GasOutputRecords(); // gas.xmf: step, time
-void GasOutputSetRecords(const std::vector<std::array<PetscReal, 2>> &records);
-PetscReal MonitorEnergyScale();
-void      MonitorSetEnergyScale(PetscReal scale);
 struct EnergyReport {
   PetscReal kinetic, internal, external_work, removed, total, balance_error;
   PetscReal failure_energy; // elastic energy released by failure responses (part of internal)

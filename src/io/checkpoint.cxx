@@ -442,7 +442,7 @@ std::string CheckpointName(const Simulation &sim, PetscInt step)
 {
   char name[64];
   std::snprintf(name, sizeof(name), "/checkpoint_%06d.h5", (int)step);
-  return sim.output_dir + name;
+  return sim.output.dir + name;
 }
 
 std::string Join(const std::vector<std::string> &names)
@@ -637,8 +637,8 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
   s[kInitialEnergy]         = sim.diag.initial_energy;
   s[kMaxErrorDisplacement]  = sim.diag.max_error_displacement;
   s[kLastErrorDisplacement] = sim.diag.last_error_displacement;
-  s[kEnergyScale]           = MonitorEnergyScale();
-  s[kTrackPid]              = (PetscReal)sim.track_pid;
+  s[kEnergyScale]           = sim.output.energy_scale;
+  s[kTrackPid]              = (PetscReal)sim.output.track_pid;
   s[kWallStepping]          = sim.wall_stepping;
   FragmentsGetState(&s[kFragments]);
   s[kInitialKinetic] = sim.diag.initial_kinetic;
@@ -669,7 +669,7 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
 void PruneCheckpoints(const Simulation &sim)
 {
   std::vector<CheckpointInfo> mine;
-  for (CheckpointInfo &c : ScanFolder(sim.output_dir))
+  for (CheckpointInfo &c : ScanFolder(sim.output.dir))
     if (c.identified && c.run_id == opts.run_id) {
       c.mine_now = std::find(opts.written.begin(), opts.written.end(), BaseName(c.path)) != opts.written.end();
       mine.push_back(c);
@@ -853,13 +853,13 @@ PetscErrorCode MoveOtherRunsAside(const Simulation &sim)
   PetscFunctionBeginUser;
   if (!sim.rank) {
     std::map<std::string, std::vector<CheckpointInfo>> others;
-    for (const CheckpointInfo &c : ScanFolder(sim.output_dir))
+    for (const CheckpointInfo &c : ScanFolder(sim.output.dir))
       if (!(c.identified && c.run_id == opts.run_id)) others[c.identified ? c.run_id : "unidentified"].push_back(c);
     for (auto &kv : others) {
-      const std::string dir = sim.output_dir + "/other_runs/" + kv.first;
+      const std::string dir = sim.output.dir + "/other_runs/" + kv.first;
       const std::string cmd = "mkdir -p '" + dir + "'";
       if (std::system(cmd.c_str()) != 0) {
-        error = "Option -output_dir " + sim.output_dir + " holds checkpoints of another run (" + kv.first + ") and " + dir + " cannot be created to keep them apart; move them away or choose another -output_dir";
+        error = "Option -output_dir " + sim.output.dir + " holds checkpoints of another run (" + kv.first + ") and " + dir + " cannot be created to keep them apart; move them away or choose another -output_dir";
         break;
       }
       std::sort(kv.second.begin(), kv.second.end(), [](const CheckpointInfo &a, const CheckpointInfo &b) { return a.step < b.step; });
@@ -868,13 +868,13 @@ PetscErrorCode MoveOtherRunsAside(const Simulation &sim)
         const std::string to = dir + "/" + BaseName(c.path);
         struct stat       st;
         if (stat(to.c_str(), &st) == 0 || std::rename(c.path.c_str(), to.c_str()) != 0) {
-          error = "Option -output_dir " + sim.output_dir + " holds " + BaseName(c.path) + " of another run (" + kv.first + "), and it cannot be moved to " + to + (stat(to.c_str(), &st) == 0 ? " (a file of that name exists)" : "") + "; move it away or choose another -output_dir";
+          error = "Option -output_dir " + sim.output.dir + " holds " + BaseName(c.path) + " of another run (" + kv.first + "), and it cannot be moved to " + to + (stat(to.c_str(), &st) == 0 ? " (a file of that name exists)" : "") + "; move it away or choose another -output_dir";
           break;
         }
         names += (names.empty() ? "" : ", ") + BaseName(c.path);
       }
       if (!error.empty()) break;
-      note += "Note: -output_dir " + sim.output_dir + " held checkpoints of another run (" + (kv.first == "unidentified" ? std::string("without a run id") : "run " + kv.first) + "): " + names + "; moved to " + dir + " (continue that run with -restart " + dir + "). This run (" + opts.run_id + ") writes its own snapshots, monitor.csv and summary.json in " + sim.output_dir + "\n";
+      note += "Note: -output_dir " + sim.output.dir + " held checkpoints of another run (" + (kv.first == "unidentified" ? std::string("without a run id") : "run " + kv.first) + "): " + names + "; moved to " + dir + " (continue that run with -restart " + dir + "). This run (" + opts.run_id + ") writes its own snapshots, monitor.csv and summary.json in " + sim.output.dir + "\n";
     }
   }
   PetscCall(BcastString(sim.comm, error));
@@ -952,12 +952,12 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscCall(WriteRootValues(sim, viewer, "scalars", Scalars(sim)));
   PetscCall(WriteRootValues(sim, viewer, "rank_values", ranks));
   std::vector<PetscReal> flat;
-  for (const auto &r : OutputRecords()) flat.insert(flat.end(), r.begin(), r.end());
+  for (const OutputRecord &r : sim.output.records) flat.insert(flat.end(), {(PetscReal)r.step, r.time, (PetscReal)r.particles});
   PetscInt nrec;
   PetscCall(WriteRootValues(sim, viewer, "output_records", flat, &nrec));
   nrec /= 3;
   flat.clear();
-  for (const auto &r : GasOutputRecords()) flat.insert(flat.end(), r.begin(), r.end());
+  for (const GasOutputRecord &r : sim.output.gas_records) flat.insert(flat.end(), {(PetscReal)r.step, r.time});
   PetscInt ngas;
   PetscCall(WriteRootValues(sim, viewer, "gas_records", flat, &ngas));
   ngas /= 2;
@@ -1098,9 +1098,9 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   sim.diag.initial_energy          = s[kInitialEnergy];
   sim.diag.max_error_displacement  = s[kMaxErrorDisplacement];
   sim.diag.last_error_displacement = s[kLastErrorDisplacement];
-  sim.track_pid                    = (PetscInt)s[kTrackPid];
+  sim.output.track_pid             = (PetscInt)s[kTrackPid];
   sim.wall_stepping                = s[kWallStepping];
-  MonitorSetEnergyScale(s[kEnergyScale]);
+  sim.output.energy_scale          = s[kEnergyScale];
   FragmentsSetState(&s[kFragments]);
   sim.diag.initial_kinetic = s[kInitialKinetic];
   for (int k = 0; k < 5; ++k) sim.diag.budget_initial[k] = s[kBudgetInitial + k];
@@ -1150,13 +1150,11 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   }
   if (sim.coupling)
     for (int k = 0; k < kNumCouplingCounters; ++k) sim.coupling->counters[k] = mine[kCouplingCounters + k];
-  std::vector<std::array<PetscReal, 3>> records(nrec);
-  for (PetscInt i = 0; i < nrec; ++i) records[i] = {rec[3 * i], rec[3 * i + 1], rec[3 * i + 2]};
-  std::vector<std::array<PetscReal, 2>> gas_records(ngas);
-  for (PetscInt i = 0; i < ngas; ++i) gas_records[i] = {gas_rec[2 * i], gas_rec[2 * i + 1]};
-  if (!sim.rank) {
-    OutputSetRecords(records);
-    GasOutputSetRecords(gas_records);
+  if (!sim.rank) { // the series continue (rank 0 holds them)
+    sim.output.records.clear();
+    for (PetscInt i = 0; i < nrec; ++i) sim.output.records.push_back({(PetscInt)rec[3 * i], rec[3 * i + 1], (PetscInt64)rec[3 * i + 2]});
+    sim.output.gas_records.clear();
+    for (PetscInt i = 0; i < ngas; ++i) sim.output.gas_records.push_back({(PetscInt)gas_rec[2 * i], gas_rec[2 * i + 1]});
   }
   sim.restarted = PETSC_TRUE;
   PetscCall(MoveOtherRunsAside(sim));
@@ -1192,7 +1190,7 @@ PetscErrorCode CheckpointAfterStep(Simulation &sim, PetscBool *stop)
   if (global[0] || global[1]) {
     *stop = PETSC_TRUE;
     const std::string why = global[0] ? std::string("signal ") + (global[0] == SIGTERM ? "SIGTERM" : global[0] == SIGUSR1 ? "SIGUSR1" : std::to_string(global[0])) + " received" : WallMessage();
-    PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s. Wrote %s; continue with -restart %s\n", sim.step, (double)sim.time, why.c_str(), CheckpointName(sim, sim.step).c_str(), sim.output_dir.c_str()));
+    PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s. Wrote %s; continue with -restart %s\n", sim.step, (double)sim.time, why.c_str(), CheckpointName(sim, sim.step).c_str(), sim.output.dir.c_str()));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

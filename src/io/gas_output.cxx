@@ -13,12 +13,7 @@
 namespace burst {
 
 namespace {
-struct GasRecord {
-  PetscInt  step;
-  PetscReal time;
-};
-std::vector<GasRecord> gas_records; // rank 0 only
-const char             cell_group[] = "/cells";
+const char cell_group[] = "/cells";
 
 std::vector<GridField> GasFields(const IceSolver &ice)
 {
@@ -34,28 +29,16 @@ std::vector<GridField> GasFields(const IceSolver &ice)
 }
 } // namespace
 
-std::vector<std::array<PetscReal, 2>> GasOutputRecords()
-{
-  std::vector<std::array<PetscReal, 2>> out;
-  for (const auto &r : gas_records) out.push_back({(PetscReal)r.step, r.time});
-  return out;
-}
-void GasOutputSetRecords(const std::vector<std::array<PetscReal, 2>> &in)
-{
-  gas_records.clear();
-  for (const auto &r : in) gas_records.push_back({(PetscInt)r[0], r[1]});
-}
-
 PetscErrorCode WriteGasOutput(Simulation &sim)
 {
   IceSolver  &ice = *sim.ice;
   PetscViewer viewer;
   char        name[64];
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.output.ev_output, 0, 0, 0, 0));
   PetscCall(IceSyncGlobal(ice));
   std::snprintf(name, sizeof(name), "gas_%06d.h5", (int)sim.step);
-  const std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
+  const std::string path = sim.output.dir + "/" + name, tmp = path + ".tmp";
   const std::vector<GridField> fields = GasFields(ice);
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
   PetscCall(WriteGridFields(viewer, ice.da, ice.state, cell_group, fields));
@@ -64,12 +47,12 @@ PetscErrorCode WriteGasOutput(Simulation &sim)
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(AtomicRename(sim.comm, tmp, path));
   if (!sim.rank) {
-    gas_records.push_back({sim.step, sim.time});
-    const std::string xmf = sim.output_dir + "/gas.xmf", xmf_tmp = xmf + ".tmp";
+    sim.output.gas_records.push_back({sim.step, sim.time});
+    const std::string xmf = sim.output.dir + "/gas.xmf", xmf_tmp = xmf + ".tmp";
     {
       std::ofstream out(xmf_tmp);
       out << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-      for (const GasRecord &r : gas_records) {
+      for (const GasOutputRecord &r : sim.output.gas_records) {
         std::snprintf(name, sizeof(name), "gas_%06d.h5", (int)r.step);
         out << XdmfGridBlock(name, cell_group, ice.dim, ice.cells, ice.lower, ice.h, true, fields, r.time);
       }
@@ -78,7 +61,7 @@ PetscErrorCode WriteGasOutput(Simulation &sim)
     }
     PetscCheck(std::rename(xmf_tmp.c_str(), xmf.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", xmf_tmp.c_str());
   }
-  PetscCall(PetscLogEventEnd(sim.ev_output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.output.ev_output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

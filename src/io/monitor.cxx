@@ -21,11 +21,6 @@
 
 namespace burst {
 
-namespace {
-FILE     *csv          = nullptr;
-PetscReal energy_scale = 0;
-PetscLogDouble last_progress = 0;
-} // namespace
 
 PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
 {
@@ -79,8 +74,8 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   r.unaccounted    = r.internal - r.stored_elastic - r.plastic_work - r.viscous_work - r.failure_energy;
   for (int d = 0; d < 3; ++d) r.momentum[d] = global[3 + d];
   r.mass         = global[6];
-  energy_scale   = PetscMax(energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
-  r.balance_error = energy_scale > 0 ? (r.total - r.external_work - sim.diag.initial_energy) / energy_scale : 0;
+  sim.output.energy_scale = PetscMax(sim.output.energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
+  r.balance_error = sim.output.energy_scale > 0 ? (r.total - r.external_work - sim.diag.initial_energy) / sim.output.energy_scale : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -100,7 +95,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
   PetscCall(fields.Get(field::stress, &sigma));
   for (PetscInt p = 0; p < n; ++p)
-    if (pid[p] == sim.track_pid) {
+    if (pid[p] == sim.output.track_pid) {
       for (PetscInt d = 0; d < dim; ++d) {
         local[d]     = x[dim * p + d];
         local[3 + d] = x[dim * p + d] - X0[dim * p + d];
@@ -110,7 +105,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
     }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.track_pid, sim.next_pid);
+  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.next_pid);
   for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -132,7 +127,7 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
   for (PetscInt p = 0; p < n; ++p) {
     PetscReal d2 = 0;
-    for (PetscInt d = 0; d < dim; ++d) d2 += (x[dim * p + d] - sim.track_point[d]) * (x[dim * p + d] - sim.track_point[d]);
+    for (PetscInt d = 0; d < dim; ++d) d2 += (x[dim * p + d] - sim.output.track_point[d]) * (x[dim * p + d] - sim.output.track_point[d]);
     if (d2 < local.d2 || (d2 == local.d2 && pid[p] < local.id)) local = {d2, pid[p]};
   }
   PetscCall(fields.RestoreAll());
@@ -141,7 +136,7 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   PetscCallMPI(MPI_Allreduce(&local.d2, &best, 1, MPIU_REAL, MPI_MIN, sim.comm));
   candidate = local.d2 == best ? local.id : PETSC_MAX_INT;
   PetscCallMPI(MPI_Allreduce(&candidate, &id, 1, MPIU_INT64, MPI_MIN, sim.comm));
-  sim.track_pid = (PetscInt)id;
+  sim.output.track_pid = (PetscInt)id;
   PetscCall(PetscInfo(sim.swarm, "Tracing particle %" PetscInt64_FMT " at %g m from -monitor_track_point\n", id, (double)std::sqrt(best)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -279,8 +274,6 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
 }
 } // namespace
 
-PetscReal MonitorEnergyScale() { return energy_scale; }
-void      MonitorSetEnergyScale(PetscReal scale) { energy_scale = scale; }
 
 // A restarted run continues monitor.csv: the rows up to the checkpoint's step are kept (a killed run
 // may have written later ones), then new rows are appended.
@@ -302,8 +295,8 @@ static PetscErrorCode ContinueMonitorFile(Simulation &sim, const std::string &pa
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
-  csv = std::fopen(path.c_str(), "a");
-  PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
+  sim.output.monitor_csv = std::fopen(path.c_str(), "a");
+  PetscCheck(sim.output.monitor_csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
   *continued = true;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -312,7 +305,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
 {
   EnergyReport r;
   PetscFunctionBeginUser;
-  if (sim.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
+  if (sim.output.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
   if (!sim.restarted) { // a restart keeps the initial energy and the scale of the balance
     PetscCall(ComputeEnergies(sim, r));
     sim.diag.initial_energy  = r.total - r.external_work;
@@ -328,14 +321,15 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   PetscReal velocity;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &velocity));
   bool continued = false;
-  if (!sim.rank && sim.restarted) PetscCall(ContinueMonitorFile(sim, sim.output_dir + "/monitor.csv", &continued));
+  if (!sim.rank && sim.restarted) PetscCall(ContinueMonitorFile(sim, sim.output.dir + "/monitor.csv", &continued));
   if (!sim.rank && !continued) {
-    const std::string path = sim.output_dir + "/monitor.csv";
-    csv                    = std::fopen(path.c_str(), "w");
-    PetscCheck(csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
+    const std::string path = sim.output.dir + "/monitor.csv";
+    sim.output.monitor_csv = std::fopen(path.c_str(), "w");
+    PetscCheck(sim.output.monitor_csv, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open %s", path.c_str());
+    FILE *csv = sim.output.monitor_csv;
     std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy,plastic_work,heat,viscous_work,stored_elastic,unaccounted");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
-    if (sim.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
+    if (sim.output.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure");
     if (sim.ice) // the budgets (ComputeBudget); balance_error is the energy budget's
       std::fprintf(csv, ",open_face_mass,removed_particle_mass,mass_budget_error"
@@ -349,7 +343,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   }
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
   else PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %14s %12s %12s %14s %12s %12s %6s\n", "step", "time", "dt", "gas mass", "kinetic", "internal", "total energy", "momentum_x", "momentum_y", "KSP"));
-  PetscCall(PetscTime(&last_progress));
+  PetscCall(PetscTime(&sim.output.last_progress));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -357,17 +351,17 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
 {
   EnergyReport r;
   PetscFunctionBeginUser;
-  if (sim.progress) {
+  if (sim.output.progress) {
     PetscLogDouble now;
     PetscCall(PetscTime(&now));
-    if (now - last_progress > 10.0) {
+    if (now - sim.output.last_progress > 10.0) {
       const PetscReal fraction = sim.time / sim.final_time, elapsed = now - sim.wall_start;
       PetscCall(PetscPrintf(sim.comm, "  progress: %5.1f%% of the final time, step %" PetscInt_FMT ", %.0f s elapsed, about %.0f s left\n", 100.0 * fraction, sim.step, elapsed, fraction > 0 ? elapsed * (1 - fraction) / fraction : 0.0));
-      last_progress = now;
+      sim.output.last_progress = now;
     }
   }
-  if (!force && sim.step % sim.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscLogEventBegin(sim.ev_monitor, 0, 0, 0, 0));
+  if (!force && sim.step % sim.output.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(sim.output.ev_monitor, 0, 0, 0, 0));
   PetscCall(ComputeEnergies(sim, r));
   PetscReal rms = 0, max = 0, track[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (sim.analytic) {
@@ -375,7 +369,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     sim.diag.max_error_displacement  = PetscMax(sim.diag.max_error_displacement, rms);
     sim.diag.last_error_displacement = rms;
   }
-  if (sim.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
+  if (sim.output.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
   IceTotals gas;
   Budget    b;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
@@ -390,11 +384,12 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &expansion_velocity));
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
-  if (!sim.rank && csv) {
+  if (!sim.rank && sim.output.monitor_csv) {
+    FILE *csv = sim.output.monitor_csv;
     std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
     std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
-    if (sim.track_pid >= 0)
+    if (sim.output.track_pid >= 0)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
     if (sim.ice)
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy, (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
@@ -415,7 +410,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     std::fprintf(csv, "\n");
     std::fflush(csv);
   }
-  PetscCall(PetscLogEventEnd(sim.ev_monitor, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(sim.output.ev_monitor, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -467,9 +462,9 @@ PetscErrorCode WriteSummary(Simulation &sim)
     PetscCallMPI(MPI_Gather(mine, num_phases + 1, MPI_DOUBLE, rank_phase_seconds.data(), num_phases + 1, MPI_DOUBLE, 0, sim.comm));
   }
   if (sim.rank) PetscFunctionReturn(PETSC_SUCCESS);
-  if (csv) {
-    std::fclose(csv);
-    csv = nullptr;
+  if (sim.output.monitor_csv) {
+    std::fclose(sim.output.monitor_csv);
+    sim.output.monitor_csv = nullptr;
   }
   std::ostringstream s;
   s.precision(17); // round-trip: the budgets are checked to 1e-12
@@ -563,7 +558,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"particle_steps_per_second\": " << rate << ",\n";
   s << "  \"particle_steps_per_second_per_core\": " << rate / sim.size << "\n";
   s << "}\n";
-  const std::string path = sim.output_dir + "/summary.json", tmp = path + ".tmp";
+  const std::string path = sim.output.dir + "/summary.json", tmp = path + ".tmp";
   {
     std::ofstream out(tmp);
     out << s.str();

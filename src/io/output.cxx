@@ -26,13 +26,6 @@
 namespace burst {
 
 namespace {
-struct OutputRecord {
-  PetscInt   step;
-  PetscReal  time;
-  PetscInt64 particles;
-};
-std::vector<OutputRecord> records; // rank 0 only
-
 // One particle field to write: swarm field name, components written, and how to read them.
 struct ParticleOutputField {
   const char *swarm_name; // field in the swarm
@@ -44,19 +37,6 @@ struct ParticleOutputField {
   bool        is_int64 = false;
 };
 } // namespace
-
-// The output series so far (step, time, particles), for the checkpoint: a restart continues particles.xmf.
-std::vector<std::array<PetscReal, 3>> OutputRecords()
-{
-  std::vector<std::array<PetscReal, 3>> out;
-  for (const auto &r : records) out.push_back({(PetscReal)r.step, r.time, (PetscReal)r.particles});
-  return out;
-}
-void OutputSetRecords(const std::vector<std::array<PetscReal, 3>> &in)
-{
-  records.clear();
-  for (const auto &r : in) records.push_back({(PetscInt)r[0], r[1], (PetscInt64)r[2]});
-}
 
 PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::string &final_name)
 {
@@ -104,7 +84,7 @@ PetscErrorCode WriteErrorHandler(MPI_Comm comm, int line, const char *fun, const
 PetscErrorCode OutputPushWriteErrorHandler(const Simulation &sim)
 {
   PetscFunctionBeginUser;
-  disk_full_dir = sim.output_dir;
+  disk_full_dir = sim.output.dir;
   PetscCall(PetscPushErrorHandler(WriteErrorHandler, nullptr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -114,9 +94,9 @@ PetscErrorCode OutputSetUp(Simulation &sim)
   PetscFunctionBeginUser;
   if (!sim.rank) {
     struct stat st;
-    if (stat(sim.output_dir.c_str(), &st) != 0) {
-      std::string cmd = "mkdir -p '" + sim.output_dir + "'";
-      PetscCheck(std::system(cmd.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not create -output_dir %s", sim.output_dir.c_str());
+    if (stat(sim.output.dir.c_str(), &st) != 0) {
+      std::string cmd = "mkdir -p '" + sim.output.dir + "'";
+      PetscCheck(std::system(cmd.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not create -output_dir %s", sim.output.dir.c_str());
     }
   }
   // One run per folder: a second run into it stops here, before it writes anything there.
@@ -124,14 +104,14 @@ PetscErrorCode OutputSetUp(Simulation &sim)
   // An output folder that cannot be written is an error now, not after hours of computing.
   PetscInt ok = 1;
   if (!sim.rank) {
-    const std::string probe = sim.output_dir + "/.burst_write_test";
+    const std::string probe = sim.output.dir + "/.burst_write_test";
     FILE             *f     = std::fopen(probe.c_str(), "w");
     ok                      = f && std::fputs("burst\n", f) >= 0 ? 1 : 0;
     if (f) ok = (std::fclose(f) == 0 && ok) ? 1 : 0;
     std::remove(probe.c_str());
   }
   PetscCallMPI(MPI_Bcast(&ok, 1, MPIU_INT, 0, sim.comm));
-  PetscCheck(ok, sim.comm, PETSC_ERR_FILE_WRITE, "Option -output_dir %s: the folder cannot be written (permissions, a file of that name, or a full disk)", sim.output_dir.c_str());
+  PetscCheck(ok, sim.comm, PETSC_ERR_FILE_WRITE, "Option -output_dir %s: the folder cannot be written (permissions, a file of that name, or a full disk)", sim.output.dir.c_str());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -253,11 +233,11 @@ static PetscErrorCode WriteCollection(Simulation &sim, const char name[], bool g
 {
   PetscFunctionBeginUser;
   if (sim.rank) PetscFunctionReturn(PETSC_SUCCESS);
-  const std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
+  const std::string path = sim.output.dir + "/" + name, tmp = path + ".tmp";
   {
     std::ofstream out(tmp);
     out << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n<Xdmf Version=\"2.0\">\n <Domain>\n  <Grid Name=\"TimeSeries\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
-    for (const auto &r : records) {
+    for (const auto &r : sim.output.records) {
       char file[64];
       std::snprintf(file, sizeof(file), "%s_%06d.h5", grid ? "grid" : "particles", (int)r.step);
       out << (grid ? XdmfNodeGrid(sim, file, r.time) : XdmfParticleGrid(sim, file, r.particles, r.time));
@@ -275,10 +255,10 @@ PetscErrorCode WriteOutput(Simulation &sim)
   PetscInt    n;
   char        name[64];
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_output, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(sim.output.ev_output, 0, 0, 0, 0));
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   std::snprintf(name, sizeof(name), "particles_%06d.h5", (int)sim.step);
-  std::string path = sim.output_dir + "/" + name, tmp = path + ".tmp";
+  std::string path = sim.output.dir + "/" + name, tmp = path + ".tmp";
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
   for (const auto &f : ParticleFields(sim)) PetscCall(WriteParticleField(sim, viewer, f, n));
@@ -288,9 +268,9 @@ PetscErrorCode WriteOutput(Simulation &sim)
   PetscCall(PetscViewerDestroy(&viewer));
   PetscCall(AtomicRename(sim.comm, tmp, path));
 
-  if (sim.write_grid) {
+  if (sim.output.write_grid) {
     std::snprintf(name, sizeof(name), "grid_%06d.h5", (int)sim.step);
-    path = sim.output_dir + "/" + name;
+    path = sim.output.dir + "/" + name;
     tmp  = path + ".tmp";
     PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
     PetscCall(WriteGridFields(viewer, sim.grid.da_nodes, sim.grid.nodal, grid_group, NodalFields(sim.grid)));
@@ -298,10 +278,10 @@ PetscErrorCode WriteOutput(Simulation &sim)
     PetscCall(PetscViewerDestroy(&viewer));
     PetscCall(AtomicRename(sim.comm, tmp, path));
   }
-  if (!sim.rank) records.push_back({sim.step, sim.time, sim.total_particles});
+  if (!sim.rank) sim.output.records.push_back({sim.step, sim.time, sim.total_particles});
   PetscCall(WriteCollection(sim, "particles.xmf", false));
-  if (sim.write_grid) PetscCall(WriteCollection(sim, "grid.xmf", true));
-  PetscCall(PetscLogEventEnd(sim.ev_output, 0, 0, 0, 0));
+  if (sim.output.write_grid) PetscCall(WriteCollection(sim, "grid.xmf", true));
+  PetscCall(PetscLogEventEnd(sim.output.ev_output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -150,7 +150,7 @@ PetscErrorCode RunLockAcquire(Simulation &sim)
 {
   const PetscReal stale = stale_seconds;
   PetscFunctionBeginUser;
-  const std::string path = sim.output_dir + "/.burst.lock";
+  const std::string path = sim.output.dir + "/.burst.lock";
   std::string       why, note;
   PetscInt          status = 0;
   if (!sim.rank) {
@@ -170,7 +170,7 @@ PetscErrorCode RunLockAcquire(Simulation &sim)
     char msg[2048] = "";
     if (!sim.rank) std::snprintf(msg, sizeof(msg), "%s", why.c_str());
     PetscCallMPI(MPI_Bcast(msg, sizeof(msg), MPI_CHAR, 0, sim.comm));
-    SETERRQ(sim.comm, status == 1 ? PETSC_ERR_USER_INPUT : PETSC_ERR_FILE_WRITE, "Option -output_dir %s: %s", sim.output_dir.c_str(), msg);
+    SETERRQ(sim.comm, status == 1 ? PETSC_ERR_USER_INPUT : PETSC_ERR_FILE_WRITE, "Option -output_dir %s: %s", sim.output.dir.c_str(), msg);
   }
   PetscCall(PetscInfo(nullptr, "Output folder lock %s held by pid %ld\n", path.c_str(), (long)getpid()));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -425,7 +425,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       total_intact_mass += s[1];
     }
     if (write_table) {
-      const std::string path = sim.output_dir + "/fragments.csv", tmp = path + ".tmp";
+      const std::string path = sim.output.dir + "/fragments.csv", tmp = path + ".tmp";
       {
         std::ofstream out(tmp);
         out << "fragment,particles,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z," << (dim == 3 ? "size_area" : "size_length") << "\n";

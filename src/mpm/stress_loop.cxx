@@ -98,7 +98,7 @@ PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
     sim.step += 1; // named after the step that failed, not over the last good output
     PetscCall(WriteOutput(sim));
     sim.step -= 1;
-    PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output_dir.c_str(), (int)sim.step + 1));
+    PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output.dir.c_str(), (int)sim.step + 1));
   }
   PetscCheck(!any_bad, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": invalid particle state after %s (see the line above: step, particle id and field); reduce -mpm_cfl or check the material parameters", sim.step, phase);
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -224,7 +224,7 @@ PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop)
   EnergyReport r;
   PetscFunctionBeginUser;
   *stop = PETSC_FALSE;
-  if ((sim.stop_kinetic_fraction <= 0 && sim.energy_growth_limit <= 0) || sim.step % sim.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
+  if ((sim.stop_kinetic_fraction <= 0 && sim.energy_growth_limit <= 0) || sim.step % sim.output.monitor_interval) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ComputeEnergies(sim, r));
   // balance_error = (E - W_ext - E0) / (largest energy seen): positive growth is energy from nowhere
   PetscCheck(sim.energy_growth_limit <= 0 || r.balance_error <= sim.energy_growth_limit, sim.comm, PETSC_ERR_NOT_CONVERGED,
@@ -351,21 +351,21 @@ PetscErrorCode TaylorFinish(Simulation &sim)
     }
     t.particles = (PetscInt)np;
     {
-      std::ofstream out(sim.output_dir + "/taylor_profile.csv");
+      std::ofstream out(sim.output.dir + "/taylor_profile.csv");
       out << "z_m,r_centres_m,r_surface_m,plastic_strain_outer\n";
       out.precision(10);
       for (PetscInt b = 0; b < nbins; ++b) out << (b + 0.5) * spacing << "," << rc[b] << "," << rs[b] << "," << eb[b] << "\n";
-      PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s/taylor_profile.csv", sim.output_dir.c_str());
+      PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s/taylor_profile.csv", sim.output.dir.c_str());
     }
     {
-      std::ofstream out(sim.output_dir + "/taylor_particles.csv");
+      std::ofstream out(sim.output.dir + "/taylor_particles.csv");
       out << "r_m,z_m,half_r_m,half_z_m,plastic_strain,temperature_K\n";
       out.precision(8);
       for (size_t p = 0; p < np; ++p) {
         const PetscReal *q = &all[NV * p];
         out << q[0] << "," << q[1] - zmin << "," << q[2] << "," << q[3] << "," << q[4] << "," << q[5] << "\n";
       }
-      PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s/taylor_particles.csv", sim.output_dir.c_str());
+      PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s/taylor_particles.csv", sim.output.dir.c_str());
     }
     PetscCall(PetscPrintf(PETSC_COMM_SELF, "Taylor: t = %g s, Lf %.4f mm (centres) %.4f mm (surface), Lf/L0 %.4f-%.4f; Df %.4f-%.4f mm, Df/D0 %.4f-%.4f; D(0.2 L0) %.4f-%.4f mm; max plastic strain %.3f, max T %.1f K\n", (double)sim.time, 1e3 * (double)t.Lf[0], 1e3 * (double)t.Lf[1], (double)(t.Lf[0] / t.length), (double)(t.Lf[1] / t.length), 1e3 * (double)t.Df[0], 1e3 * (double)t.Df[1], (double)(t.Df[0] / t.diameter), (double)(t.Df[1] / t.diameter), 1e3 * (double)t.D02[0], 1e3 * (double)t.D02[1], (double)t.max_plastic_strain, (double)t.max_temperature));
   }
