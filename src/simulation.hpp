@@ -4,6 +4,7 @@
 #include "petsc_compat.hpp"
 #include "mpm/shape.hpp"
 #include "io/output.hpp"
+#include "mpm/fragments.hpp"
 #include "../models/material.hpp"
 #include <petscdmda.h>
 #include <petscdmswarm.h>
@@ -196,6 +197,7 @@ struct Simulation {
   Coupling                               *coupling = nullptr; // owned by the driver
   std::shared_ptr<HeatConduction>         heat;               // null unless -mpm_heat_conduction
   std::shared_ptr<TaylorScene>            taylor;             // null unless -taylor
+  Fragments                               fragments;          // the fragment search and the Grady estimate (fragments.cxx)
   bool HasParticles() const { return swarm != nullptr; }
 
   // State
@@ -282,8 +284,6 @@ PetscErrorCode FragmentsMonitor(Simulation &sim);
 PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity);
 PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table);
 PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out);
-void           FragmentsGetState(PetscReal s[6]); // for the checkpoint
-void           FragmentsSetState(const PetscReal s[6]);
 bool           SwarmHasModelField(const Simulation &sim, const char name[]);
 PetscErrorCode RunPointDriver(Simulation &sim);
 

@@ -640,7 +640,11 @@ std::vector<PetscReal> Scalars(const Simulation &sim)
   s[kEnergyScale]           = sim.output.energy_scale;
   s[kTrackPid]              = (PetscReal)sim.output.track_pid;
   s[kWallStepping]          = sim.wall_stepping;
-  FragmentsGetState(&s[kFragments]);
+  {
+    const Fragments &fr = sim.fragments;
+    const PetscReal  measured[6] = {fr.fracture_velocity, fr.fracture_time, (PetscReal)fr.last_count, fr.initial_mass, fr.largest_mass, fr.total_intact_mass};
+    for (int k = 0; k < 6; ++k) s[kFragments + k] = measured[k];
+  }
   s[kInitialKinetic] = sim.diag.initial_kinetic;
   for (int k = 0; k < 5; ++k) s[kBudgetInitial + k] = sim.diag.budget_initial[k];
   for (int k = 0; k < 3; ++k) s[kBudgetScale + k] = sim.diag.budget_scale[k];
@@ -1101,7 +1105,11 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   sim.output.track_pid             = (PetscInt)s[kTrackPid];
   sim.wall_stepping                = s[kWallStepping];
   sim.output.energy_scale          = s[kEnergyScale];
-  FragmentsSetState(&s[kFragments]);
+  {
+    Fragments &fr = sim.fragments;
+    fr.fracture_velocity = s[kFragments], fr.fracture_time = s[kFragments + 1], fr.last_count = (PetscInt64)s[kFragments + 2];
+    fr.initial_mass = s[kFragments + 3], fr.largest_mass = s[kFragments + 4], fr.total_intact_mass = s[kFragments + 5];
+  }
   sim.diag.initial_kinetic = s[kInitialKinetic];
   for (int k = 0; k < 5; ++k) sim.diag.budget_initial[k] = s[kBudgetInitial + k];
   for (int k = 0; k < 3; ++k) sim.diag.budget_scale[k] = s[kBudgetScale + k];

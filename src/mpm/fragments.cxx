@@ -21,6 +21,7 @@
 #include "simulation.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
+#include "mpm/fragments.hpp"
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -84,25 +85,6 @@ struct HashGrid {
   }
 };
 
-struct FragmentOptions {
-  PetscBool enabled         = PETSC_FALSE;
-  PetscReal distance_factor = 1.5;
-  PetscInt  min_particles   = 4;
-  PetscReal min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
-  std::vector<char> counted;         // per material: part of the fragments (-fragments_materials; empty: all)
-  bool      Counts(PetscInt material) const { return counted.empty() || counted[material]; }
-  // Grady-Hightower (eqs. 25-26)
-  PetscBool grady = PETSC_FALSE;
-  PetscReal center[3] = {0, 0, 0}, radius = 0, sector = 360;
-  PetscReal density = 0, youngs_modulus = 0, toughness = 0, specific_heat = 0, expansion = 0, diffusivity = 0, yield_stress = 0, shear_rate = 0;
-};
-FragmentOptions options;
-PetscReal       fracture_velocity = -1, fracture_time = -1; // measured at the first failure
-PetscInt64      last_count = 0;
-PetscReal       initial_mass = -1; // total mass at the first search
-PetscReal       largest_mass = 0, total_intact_mass = 0;
-std::vector<PetscReal> counted_masses; // rank 0: the counted fragments' masses at the last search, kg
-
 // Least squares of ln k on f(m_k) over the masses sorted largest first (N(>= m_k) = k):
 // ln N = ln N0 + slope f(m). Returns false with fewer than three masses or a slope >= 0.
 bool FitCumulative(std::vector<PetscReal> masses, PetscReal (*f)(PetscReal), PetscReal *N0, PetscReal *slope)
@@ -124,26 +106,25 @@ bool FitCumulative(std::vector<PetscReal> masses, PetscReal (*f)(PetscReal), Pet
 } // namespace
 
 // What the fragment search remembers between steps, for the checkpoint.
-void FragmentsGetState(PetscReal s[6]) { s[0] = fracture_velocity, s[1] = fracture_time, s[2] = (PetscReal)last_count, s[3] = initial_mass, s[4] = largest_mass, s[5] = total_intact_mass; }
-void FragmentsSetState(const PetscReal s[6]) { fracture_velocity = s[0], fracture_time = s[1], last_count = (PetscInt64)s[2], initial_mass = s[3], largest_mass = s[4], total_intact_mass = s[5]; }
 
 PetscErrorCode FragmentsSetUp(Simulation &sim)
 {
+  Fragments &frag = sim.fragments;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Fragments and the Grady-Hightower estimate", "Fragments");
-  PetscCall(PetscOptionsBool("-fragments", "Find fragments (connected intact particles) at output steps and at the end", "", options.enabled, &options.enabled, nullptr));
-  PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", options.distance_factor, &options.distance_factor, nullptr));
-  PetscCall(CheckRange(sim.comm, "-fragments_distance_factor", options.distance_factor, 0, 10, PETSC_TRUE));
-  PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", options.min_particles, &options.min_particles, nullptr));
-  PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", options.min_mass_fraction, &options.min_mass_fraction, nullptr));
-  PetscCall(CheckRange(sim.comm, "-fragments_min_mass_fraction", options.min_mass_fraction, 0, 1, PETSC_FALSE));
+  PetscCall(PetscOptionsBool("-fragments", "Find fragments (connected intact particles) at output steps and at the end", "", frag.options.enabled, &frag.options.enabled, nullptr));
+  PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", frag.options.distance_factor, &frag.options.distance_factor, nullptr));
+  PetscCall(CheckRange(sim.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", frag.options.min_particles, &frag.options.min_particles, nullptr));
+  PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
   {
     char     *names[32];
     PetscInt  n = 32;
     PetscBool set;
     PetscCall(PetscOptionsStringArray("-fragments_materials", "Materials whose particles make the fragments and the expansion velocity (e.g. the container, not its filling); default all", "", names, &n, &set));
     if (set) {
-      options.counted.assign(sim.materials.size(), 0);
+      frag.options.counted.assign(sim.materials.size(), 0);
       for (PetscInt i = 0; i < n; ++i) {
         PetscInt found = -1;
         std::string valid;
@@ -152,27 +133,27 @@ PetscErrorCode FragmentsSetUp(Simulation &sim)
           if (sim.materials[m]->Name() == std::string(names[i])) found = (PetscInt)m;
         }
         PetscCheck(found >= 0 || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Option -fragments_materials: '%s' is not one of -materials (%s)", names[i], valid.c_str());
-        if (found >= 0) options.counted[found] = 1;
+        if (found >= 0) frag.options.counted[found] = 1;
         PetscCall(PetscFree(names[i]));
       }
     }
   }
-  PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", options.grady, &options.grady, nullptr));
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", options.center, sim.grid.dim, nullptr));
-  PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", options.radius, &options.radius, nullptr));
-  PetscCall(PetscOptionsReal("-grady_sector", "Angle of the modelled sector (degrees; 90 for a quarter)", "", options.sector, &options.sector, nullptr));
-  PetscCall(PetscOptionsReal("-grady_density", "Density rho (kg/m^3)", "", options.density, &options.density, nullptr));
-  PetscCall(PetscOptionsReal("-grady_youngs_modulus", "Young's modulus E of Gamma_T = K_c^2/(2E) (Pa)", "", options.youngs_modulus, &options.youngs_modulus, nullptr));
-  PetscCall(PetscOptionsReal("-grady_fracture_toughness", "Fracture toughness K_c (Pa m^1/2)", "", options.toughness, &options.toughness, nullptr));
-  PetscCall(PetscOptionsReal("-grady_specific_heat", "Specific heat Cp of Gamma_S (J/(kg K))", "", options.specific_heat, &options.specific_heat, nullptr));
-  PetscCall(PetscOptionsReal("-grady_thermal_expansion", "Thermal softening/expansion coefficient alpha of Gamma_S (1/K)", "", options.expansion, &options.expansion, nullptr));
-  PetscCall(PetscOptionsReal("-grady_thermal_diffusivity", "Thermal diffusivity chi of Gamma_S (m^2/s)", "", options.diffusivity, &options.diffusivity, nullptr));
-  PetscCall(PetscOptionsReal("-grady_yield_stress", "Yield stress Y of Gamma_S (Pa)", "", options.yield_stress, &options.yield_stress, nullptr));
-  PetscCall(PetscOptionsReal("-grady_shear_rate", "Shear strain rate of Gamma_S (1/s)", "", options.shear_rate, &options.shear_rate, nullptr));
+  PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", frag.options.grady, &frag.options.grady, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", frag.options.center, sim.grid.dim, nullptr));
+  PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", frag.options.radius, &frag.options.radius, nullptr));
+  PetscCall(PetscOptionsReal("-grady_sector", "Angle of the modelled sector (degrees; 90 for a quarter)", "", frag.options.sector, &frag.options.sector, nullptr));
+  PetscCall(PetscOptionsReal("-grady_density", "Density rho (kg/m^3)", "", frag.options.density, &frag.options.density, nullptr));
+  PetscCall(PetscOptionsReal("-grady_youngs_modulus", "Young's modulus E of Gamma_T = K_c^2/(2E) (Pa)", "", frag.options.youngs_modulus, &frag.options.youngs_modulus, nullptr));
+  PetscCall(PetscOptionsReal("-grady_fracture_toughness", "Fracture toughness K_c (Pa m^1/2)", "", frag.options.toughness, &frag.options.toughness, nullptr));
+  PetscCall(PetscOptionsReal("-grady_specific_heat", "Specific heat Cp of Gamma_S (J/(kg K))", "", frag.options.specific_heat, &frag.options.specific_heat, nullptr));
+  PetscCall(PetscOptionsReal("-grady_thermal_expansion", "Thermal softening/expansion coefficient alpha of Gamma_S (1/K)", "", frag.options.expansion, &frag.options.expansion, nullptr));
+  PetscCall(PetscOptionsReal("-grady_thermal_diffusivity", "Thermal diffusivity chi of Gamma_S (m^2/s)", "", frag.options.diffusivity, &frag.options.diffusivity, nullptr));
+  PetscCall(PetscOptionsReal("-grady_yield_stress", "Yield stress Y of Gamma_S (Pa)", "", frag.options.yield_stress, &frag.options.yield_stress, nullptr));
+  PetscCall(PetscOptionsReal("-grady_shear_rate", "Shear strain rate of Gamma_S (1/s)", "", frag.options.shear_rate, &frag.options.shear_rate, nullptr));
   PetscOptionsEnd();
-  if (options.grady) {
+  if (frag.options.grady) {
     const char *names[]  = {"-grady_radius", "-grady_density", "-grady_youngs_modulus", "-grady_fracture_toughness", "-grady_specific_heat", "-grady_thermal_expansion", "-grady_thermal_diffusivity", "-grady_yield_stress", "-grady_shear_rate"};
-    const PetscReal v[] = {options.radius, options.density, options.youngs_modulus, options.toughness, options.specific_heat, options.expansion, options.diffusivity, options.yield_stress, options.shear_rate};
+    const PetscReal v[] = {frag.options.radius, frag.options.density, frag.options.youngs_modulus, frag.options.toughness, frag.options.specific_heat, frag.options.expansion, frag.options.diffusivity, frag.options.yield_stress, frag.options.shear_rate};
     for (int i = 0; i < 9; ++i) PetscCall(CheckRange(sim.comm, names[i], v[i], 0, PETSC_MAX_REAL, PETSC_TRUE));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -189,21 +170,21 @@ bool SwarmHasModelField(const Simulation &sim, const char name[])
 
 // The Grady-Hightower fragmentation energies (eq. 26): tension K_c^2/(2E); shear
 // (rho Cp/alpha) (9 rho^3 Cp^2 chi^3 / (Y^3 alpha^2 gamma_dot))^(1/4).
-static void GradyEnergies(PetscReal &tension, PetscReal &shear)
+static void GradyEnergies(const FragmentOptions &o, PetscReal &tension, PetscReal &shear)
 {
-  const FragmentOptions &o = options;
-  tension                  = o.toughness * o.toughness / (2 * o.youngs_modulus);
+  tension = o.toughness * o.toughness / (2 * o.youngs_modulus);
   shear = o.density * o.specific_heat / o.expansion * std::pow(9 * std::pow(o.density, 3) * o.specific_heat * o.specific_heat * std::pow(o.diffusivity, 3) / (std::pow(o.yield_stress, 3) * o.expansion * o.expansion * o.shear_rate), 0.25);
 }
 
 // Eq. 25: N = 2 pi (rho R0 V^2 / (24 Gamma))^(1/3) for the whole cylinder.
-static PetscReal GradyCount(PetscReal gamma, PetscReal velocity) { return 2 * PETSC_PI * std::cbrt(options.density * options.radius * velocity * velocity / (24 * gamma)); }
+static PetscReal GradyCount(const FragmentOptions &o, PetscReal gamma, PetscReal velocity) { return 2 * PETSC_PI * std::cbrt(o.density * o.radius * velocity * velocity / (24 * gamma)); }
 
 // The mass-weighted mean radial velocity about the Grady axis of the counted materials, and the
 // number of their particles where a failure criterion has been met: failed, or (crack band) softening
 // since a criterion, so the Grady velocity means the same with every regularisation.
 static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, PetscReal *failed_count)
 {
+  Fragments &frag = sim.fragments;
   SwarmAccess      fields(sim.swarm);
   const PetscInt  *failed = nullptr, *softening = nullptr, *material;
   const PetscReal *x, *v, *m;
@@ -218,13 +199,13 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::mass, &m));
   for (PetscInt p = 0; p < n; ++p) {
-    if (!options.Counts(material[p])) continue;
+    if (!frag.options.Counts(material[p])) continue;
     if ((failed && failed[p]) || (softening && softening[p])) local[2] += 1;
     PetscReal r = 0, vr = 0;
-    for (PetscInt d = 0; d < 2; ++d) r += (x[dim * p + d] - options.center[d]) * (x[dim * p + d] - options.center[d]);
+    for (PetscInt d = 0; d < 2; ++d) r += (x[dim * p + d] - frag.options.center[d]) * (x[dim * p + d] - frag.options.center[d]);
     r = std::sqrt(r);
     if (r > 0)
-      for (PetscInt d = 0; d < 2; ++d) vr += v[dim * p + d] * (x[dim * p + d] - options.center[d]) / r;
+      for (PetscInt d = 0; d < 2; ++d) vr += v[dim * p + d] * (x[dim * p + d] - frag.options.center[d]) / r;
     local[0] += m[p] * vr;
     local[1] += m[p];
   }
@@ -239,33 +220,36 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
 // met anywhere (a particle fails, or starts softening under the crack band).
 PetscErrorCode FragmentsMonitor(Simulation &sim)
 {
+  Fragments &frag = sim.fragments;
   PetscReal velocity, failed;
   PetscFunctionBeginUser;
-  if (!options.grady || fracture_velocity >= 0 || !SwarmHasModelField(sim, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!frag.options.grady || frag.fracture_velocity >= 0 || !SwarmHasModelField(sim, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(MeanRadialVelocity(sim, &velocity, &failed));
   if (failed > 0) {
-    fracture_velocity = velocity;
-    fracture_time     = sim.time;
-    PetscCall(PetscInfo(sim.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)sim.time, (double)fracture_velocity));
+    frag.fracture_velocity = velocity;
+    frag.fracture_time     = sim.time;
+    PetscCall(PetscInfo(sim.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)sim.time, (double)frag.fracture_velocity));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity)
 {
+  Fragments &frag = sim.fragments;
   PetscFunctionBeginUser;
-  *enabled  = options.grady;
+  *enabled  = frag.options.grady;
   *velocity = 0;
-  if (options.grady) PetscCall(MeanRadialVelocity(sim, velocity, nullptr));
+  if (frag.options.grady) PetscCall(MeanRadialVelocity(sim, velocity, nullptr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
 {
+  Fragments &frag = sim.fragments;
   const PetscInt dim = sim.grid.dim;
   PetscInt       n;
   PetscFunctionBeginUser;
-  if (!options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!frag.options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
   const bool       has_failed = SwarmHasModelField(sim, state_field::failed);
   SwarmAccess      fields(sim.swarm);
   const PetscReal *x, *v, *m, *V;
@@ -286,14 +270,14 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   PetscReal              s_max = 0;
   for (PetscInt p = 0; p < n; ++p) {
     fragment[p] = -1;
-    if ((failed && failed[p]) || !options.Counts(material[p])) continue;
+    if ((failed && failed[p]) || !frag.options.Counts(material[p])) continue;
     intact.push_back(p);
     size[p] = std::pow(V[p], 1.0 / dim);
     s_max   = PetscMax(s_max, size[p]);
   }
   PetscReal s_global;
   PetscCallMPI(MPI_Allreduce(&s_max, &s_global, 1, MPIU_REAL, MPI_MAX, sim.comm));
-  const PetscReal factor = options.distance_factor;
+  const PetscReal factor = frag.options.distance_factor;
   HashGrid        grid{factor * PetscMax(s_global, 1e-300), dim, {}};
   const PetscInt  ni = (PetscInt)intact.size();
   for (PetscInt a = 0; a < ni; ++a) grid.Insert(x + dim * intact[a], a);
@@ -405,24 +389,24 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   }
   PetscReal mass_local = 0, mass_total = 0;
   for (PetscInt p = 0; p < n; ++p)
-    if (options.Counts(material[p])) mass_local += m[p];
+    if (frag.options.Counts(material[p])) mass_local += m[p];
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, sim.comm));
   PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, sim.comm));
-  if (initial_mass < 0) initial_mass = mass_total;
+  if (frag.initial_mass < 0) frag.initial_mass = mass_total;
   if (!sim.rank) {
-    last_count        = 0;
-    largest_mass      = 0;
-    total_intact_mass = 0;
-    counted_masses.clear();
+    frag.last_count        = 0;
+    frag.largest_mass      = 0;
+    frag.total_intact_mass = 0;
+    frag.counted_masses.clear();
     for (PetscInt fr = 0; fr < nfragments; ++fr) {
       const PetscReal *s = &total[(size_t)nsum * fr];
-      if (s[0] >= options.min_particles && s[1] >= options.min_mass_fraction * initial_mass) {
-        ++last_count;
-        counted_masses.push_back(s[1]);
+      if (s[0] >= frag.options.min_particles && s[1] >= frag.options.min_mass_fraction * frag.initial_mass) {
+        ++frag.last_count;
+        frag.counted_masses.push_back(s[1]);
       }
-      largest_mass = PetscMax(largest_mass, s[1]);
-      total_intact_mass += s[1];
+      frag.largest_mass = PetscMax(frag.largest_mass, s[1]);
+      frag.total_intact_mass += s[1];
     }
     if (write_table) {
       const std::string path = sim.output.dir + "/fragments.csv", tmp = path + ".tmp";
@@ -446,45 +430,46 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", path.c_str());
     }
   }
-  PetscCallMPI(MPI_Bcast(&last_count, 1, MPIU_INT64, 0, sim.comm));
-  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, last_count, options.min_particles, (double)options.min_mass_fraction, nfragments, (double)largest_mass, (double)total_intact_mass));
+  PetscCallMPI(MPI_Bcast(&frag.last_count, 1, MPIU_INT64, 0, sim.comm));
+  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, frag.last_count, frag.options.min_particles, (double)frag.options.min_mass_fraction, nfragments, (double)frag.largest_mass, (double)frag.total_intact_mass));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Adds the fragment and Grady entries to summary.json (rank 0; `out` is inside the JSON object).
 PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
 {
+  const Fragments &frag = sim.fragments;
   PetscFunctionBeginUser;
-  if (options.enabled) {
-    out << "  \"fragment_count\": " << last_count << ",\n";
-    out << "  \"fragment_min_particles\": " << options.min_particles << ",\n";
-    out << "  \"fragment_min_mass_fraction\": " << options.min_mass_fraction << ",\n";
-    out << "  \"initial_mass\": " << initial_mass << ",\n";
-    out << "  \"largest_fragment_mass\": " << largest_mass << ",\n";
-    out << "  \"intact_mass\": " << total_intact_mass << ",\n";
+  if (frag.options.enabled) {
+    out << "  \"fragment_count\": " << frag.last_count << ",\n";
+    out << "  \"fragment_min_particles\": " << frag.options.min_particles << ",\n";
+    out << "  \"fragment_min_mass_fraction\": " << frag.options.min_mass_fraction << ",\n";
+    out << "  \"initial_mass\": " << frag.initial_mass << ",\n";
+    out << "  \"largest_fragment_mass\": " << frag.largest_mass << ",\n";
+    out << "  \"intact_mass\": " << frag.total_intact_mass << ",\n";
     // the counted fragments' cumulative mass distribution fitted (fewer than three: null)
     PetscReal N0, slope;
     out << "  \"fragment_mass_fit\": {\"mott\": ";
-    if (FitCumulative(counted_masses, [](PetscReal m) { return std::sqrt(m); }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << 1 / (slope * slope) << "}";
+    if (FitCumulative(frag.counted_masses, [](PetscReal m) { return std::sqrt(m); }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << 1 / (slope * slope) << "}";
     else out << "null";
     out << ", \"grady_kipp\": ";
-    if (FitCumulative(counted_masses, [](PetscReal m) { return m; }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << -1 / slope << "}";
+    if (FitCumulative(frag.counted_masses, [](PetscReal m) { return m; }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << -1 / slope << "}";
     else out << "null";
     out << "},\n";
   }
-  if (options.grady) {
+  if (frag.options.grady) {
     PetscReal tension, shear;
-    GradyEnergies(tension, shear);
-    const PetscReal V = fracture_velocity;
+    GradyEnergies(frag.options, tension, shear);
+    const PetscReal V = frag.fracture_velocity;
     out << "  \"grady_gamma_tension\": " << tension << ",\n";
     out << "  \"grady_gamma_shear\": " << shear << ",\n";
     out << "  \"fracture_velocity\": " << V << ",\n";
-    out << "  \"fracture_time\": " << fracture_time << ",\n";
+    out << "  \"fracture_time\": " << frag.fracture_time << ",\n";
     if (V > 0) {
-      const PetscReal fraction = options.sector / 360.0;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Grady-Hightower for V = %.1f m/s at the first failure (t = %g s): %.2f (shear) to %.2f (tension) fragments on the modelled %g degrees; found %" PetscInt64_FMT "\n", (double)V, (double)fracture_time, (double)(fraction * GradyCount(shear, V)), (double)(fraction * GradyCount(tension, V)), (double)options.sector, last_count));
-      out << "  \"grady_tension\": {\"whole\": " << GradyCount(tension, V) << ", \"sector\": " << fraction * GradyCount(tension, V) << "},\n";
-      out << "  \"grady_shear\": {\"whole\": " << GradyCount(shear, V) << ", \"sector\": " << fraction * GradyCount(shear, V) << "},\n";
+      const PetscReal fraction = frag.options.sector / 360.0;
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Grady-Hightower for V = %.1f m/s at the first failure (t = %g s): %.2f (shear) to %.2f (tension) fragments on the modelled %g degrees; found %" PetscInt64_FMT "\n", (double)V, (double)frag.fracture_time, (double)(fraction * GradyCount(frag.options, shear, V)), (double)(fraction * GradyCount(frag.options, tension, V)), (double)frag.options.sector, frag.last_count));
+      out << "  \"grady_tension\": {\"whole\": " << GradyCount(frag.options, tension, V) << ", \"sector\": " << fraction * GradyCount(frag.options, tension, V) << "},\n";
+      out << "  \"grady_shear\": {\"whole\": " << GradyCount(frag.options, shear, V) << ", \"sector\": " << fraction * GradyCount(frag.options, shear, V) << "},\n";
     } else {
       out << "  \"grady_tension\": null,\n  \"grady_shear\": null,\n";
     }
