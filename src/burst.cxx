@@ -11,6 +11,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 // The flow of one run: options -> grid -> materials -> particles -> [step, monitor, output]* ->
 // summary. One time step is src/step.cxx.
 #include "simulation.hpp"
+#include "step.hpp"
 #include "mpm/geometry.hpp"
 #include "mpm/analytic.hpp"
 #include "util.hpp"
@@ -112,9 +113,9 @@ static PetscErrorCode View(Simulation &sim)
   PetscViewer viewer = PETSC_VIEWER_STDOUT_(sim.comm);
   const Grid &g      = sim.grid;
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "burst: scene %s, %" PetscInt_FMT "-D, %d rank(s)\n", sim.scene.c_str(), g.dim, sim.size));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "burst: scene %s, %" PetscInt_FMT "-D, %d rank(s)\n", sim.run.scene.c_str(), g.dim, sim.size));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1], g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.final_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.run.final_time));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.total_particles));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  run %s%s\n", CheckpointRunId().c_str(), sim.restarted ? " (continued from its checkpoint)" : ""));
   for (auto &m : sim.materials) PetscCall(m->View(viewer));
@@ -150,7 +151,7 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PetscLogStagePop());
   }
   PetscCall(PetscTime(&sim.wall_start));
-  for (bool done = false; !done && sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps;) {
+  for (bool done = false; !done && sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps;) {
     PetscCall(PetscTime(&t0));
     PetscCall(PetscLogStagePush(sim.stage_step));
     PetscCall(TakeStep(sim));
@@ -159,7 +160,7 @@ static PetscErrorCode Run(Simulation &sim)
     sim.wall_stepping += t1 - t0;
     PetscBool stop = PETSC_FALSE;
     PetscCall(CheckRunStops(sim, &stop));
-    const bool last = stop || !(sim.time < sim.final_time * (1 - 1e-12) && sim.step < sim.max_steps);
+    const bool last = stop || !(sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
     if (last || (sim.output.interval > 0 && sim.step % sim.output.interval == 0)) {

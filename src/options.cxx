@@ -20,17 +20,17 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   int       choice;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "burst run control", "Run");
-  PetscCall(PetscStrncpy(buf, sim.scene.c_str(), sizeof(buf)));
+  PetscCall(PetscStrncpy(buf, sim.run.scene.c_str(), sizeof(buf)));
   PetscCall(PetscOptionsString("-scene", "Name of the scene, reported in the summary", "", buf, buf, sizeof(buf), &set));
-  sim.scene = buf;
+  sim.run.scene = buf;
   PetscCall(PetscStrncpy(buf, sim.output.dir.c_str(), sizeof(buf)));
   PetscCall(PetscOptionsString("-output_dir", "Folder for HDF5/XDMF output, monitor.csv and summary.json", "", buf, buf, sizeof(buf), &set));
   sim.output.dir = buf;
 
-  PetscCall(PetscOptionsReal("-final_time", "Final time (s), > 0", "", sim.final_time, &sim.final_time, nullptr));
-  PetscCall(CheckRange(sim.comm, "-final_time", sim.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
-  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (default: no limit)", "", sim.max_steps, &sim.max_steps, nullptr));
-  PetscCheck(sim.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.max_steps);
+  PetscCall(PetscOptionsReal("-final_time", "Final time (s), > 0", "", sim.run.final_time, &sim.run.final_time, nullptr));
+  PetscCall(CheckRange(sim.comm, "-final_time", sim.run.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (default: no limit)", "", sim.run.max_steps, &sim.run.max_steps, nullptr));
+  PetscCheck(sim.run.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.run.max_steps);
   PetscCall(PetscOptionsReal("-mpm_cfl", "Courant number: dt = cfl min_p min_d h_d/(c_p + |v_p,d|), in (0, 1]", "", sim.cfl, &sim.cfl, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_cfl", sim.cfl, 0, 1, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-mpm_dt_max", "Largest time step (s), > 0 (default: none)", "", sim.dt_max, &sim.dt_max, nullptr));
@@ -49,10 +49,10 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsInt("-mpm_xpic_order", "Order m of XPIC(m), in [1, 8] (m = 1 is PIC); default 2", "", sim.xpic_order, &sim.xpic_order, nullptr));
   PetscCheck(sim.xpic_order >= 1 && sim.xpic_order <= 8, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_xpic_order = %" PetscInt_FMT " is out of range: it must be in [1, 8]", sim.xpic_order);
   PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.axisymmetric, &sim.axisymmetric, nullptr));
-  PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.stop_kinetic_fraction, &sim.stop_kinetic_fraction, nullptr));
-  PetscCheck(sim.stop_kinetic_fraction >= 0 && sim.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.stop_kinetic_fraction);
-  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.energy_growth_limit, &sim.energy_growth_limit, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.run.stop_kinetic_fraction, &sim.run.stop_kinetic_fraction, nullptr));
+  PetscCheck(sim.run.stop_kinetic_fraction >= 0 && sim.run.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.run.stop_kinetic_fraction);
+  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.run.energy_growth_limit, &sim.run.energy_growth_limit, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.run.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
   choice = (int)sim.f_update;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
   sim.f_update = (FUpdate)choice;

@@ -4,6 +4,7 @@
 #include "petsc_compat.hpp"
 #include "mpm/shape.hpp"
 #include "io/output.hpp"
+#include "run_control.hpp"
 #include "mpm/fragments.hpp"
 #include "../models/material.hpp"
 #include <petscdmda.h>
@@ -146,17 +147,14 @@ struct Simulation {
   PetscMPIInt rank = 0, size = 1;
   PetscBool   help = PETSC_FALSE; // -help: read and list every option, then stop
 
-  // Run control
-  std::string scene = "unnamed";
-  PetscReal   final_time = 1.0, cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
-  PetscInt    max_steps = PETSC_MAX_INT;
+  RunControl  run; // the scene's name, final time, step cap and stops
+
+  PetscReal   cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
   StepScheme  scheme = StepScheme::USL;
   PetscReal   flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
   Transfer    transfer = Transfer::FlipPic;
   PetscInt    xpic_order = 2;      // m of XPIC(m); m = 1 is PIC
   PetscBool   axisymmetric = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
-  PetscReal   energy_growth_limit = 0;   // stop with an error once the energy balance error exceeds this (0: never)
-  PetscReal   stop_kinetic_fraction = 0; // stop once the kinetic energy falls below this fraction of its initial value (0: never)
   FUpdate     f_update = FUpdate::Linear;
   ShapeType   shape = ShapeType::Linear;
   StencilCache stencil_cache;      // this step's particle stencils, shared by the transfers (shape.hpp)
@@ -260,7 +258,6 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed);
 PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed);
 PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells = true, PetscInt *num_leaving = nullptr);
 
-PetscErrorCode TakeStep(Simulation &sim);
 
 // Axisymmetric MPM (src/mpm/axisymmetric.cxx): checks the grid (-dim 2, r >= 0, the axis a symmetry
 // face) and the features that do not support it; a no-op without -axisymmetric.
@@ -270,9 +267,6 @@ PetscErrorCode AxisymmetricSetUp(Simulation &sim);
 PetscErrorCode TaylorSceneOptions(Simulation &sim);
 PetscErrorCode TaylorFinish(Simulation &sim);
 PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &out);
-// At monitor steps: *stop once the kinetic energy is below -stop_kinetic_fraction of its initial
-// value; an error naming the cause once the energy has grown past -mpm_energy_growth_limit.
-PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop);
 PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
 PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
 PetscErrorCode NonlocalAverage(Simulation &sim);     // src/mpm/nonlocal.cxx: no-op unless a material has -MAT_regularization nonlocal

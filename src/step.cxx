@@ -26,6 +26,7 @@
 // Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
 // src/coupling/.
 #include "simulation.hpp"
+#include "step.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 
@@ -139,7 +140,7 @@ static PetscErrorCode StableTimeStep(Simulation &sim)
     sim.dt = PetscMin(sim.dt, PetscMin(dt_gas, sim.dt_max));
     if (sim.dt_fixed > 0) sim.dt = sim.dt_fixed;
     PetscCheck(sim.dt > 0 && sim.dt < PETSC_MAX_REAL, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive: a sound speed or velocity is not finite; check the gas materials' equation-of-state options (-<gas>_gamma, -<gas>_cv, ...), their -<gas>_density and -<gas>_temperature, and -ice_cfl / -ice_dt", sim.step, (double)sim.dt);
-    const PetscReal remaining = sim.final_time - sim.time;
+    const PetscReal remaining = sim.run.final_time - sim.time;
     if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining;
   }
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -970,7 +970,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   const std::string solids = SolidNames(sim), gases = GasNames(sim);
   const PetscInt    cells[3] = {sim.grid.cells[0], sim.grid.cells[1], sim.grid.dim == 3 ? sim.grid.cells[2] : 1};
   const PetscInt    counts[2] = {nrec, ngas};
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "scene", PETSC_STRING, sim.scene.c_str()));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "scene", PETSC_STRING, sim.run.scene.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "solid_materials", PETSC_STRING, solids.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "gas_materials", PETSC_STRING, gases.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dim", PETSC_INT, &sim.grid.dim));
@@ -1054,7 +1054,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", (std::string("cells_") + "xyz"[d]).c_str(), PETSC_INT, nullptr, &cells[d]));
     PetscCheck(cells[d] == mine, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not match this run: %" PetscInt_FMT " cells in direction %d, this run has %" PetscInt_FMT " (-grid_cells)", file.c_str(), cells[d], d, mine);
   }
-  PetscCall(CheckString(sim, viewer, file, "scene", sim.scene, "scene (-scene)"));
+  PetscCall(CheckString(sim, viewer, file, "scene", sim.run.scene, "scene (-scene)"));
   PetscCall(CheckString(sim, viewer, file, "solid_materials", SolidNames(sim), "solid material set (-materials)"));
   PetscCall(CheckString(sim, viewer, file, "gas_materials", GasNames(sim), "gas material set (-ice_materials)"));
   // Same physics options? (format 1 checkpoints do not say)

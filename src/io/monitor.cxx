@@ -355,7 +355,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     PetscLogDouble now;
     PetscCall(PetscTime(&now));
     if (now - sim.output.last_progress > 10.0) {
-      const PetscReal fraction = sim.time / sim.final_time, elapsed = now - sim.wall_start;
+      const PetscReal fraction = sim.time / sim.run.final_time, elapsed = now - sim.wall_start;
       PetscCall(PetscPrintf(sim.comm, "  progress: %5.1f%% of the final time, step %" PetscInt_FMT ", %.0f s elapsed, about %.0f s left\n", 100.0 * fraction, sim.step, elapsed, fraction > 0 ? elapsed * (1 - fraction) / fraction : 0.0));
       sim.output.last_progress = now;
     }
@@ -469,7 +469,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   std::ostringstream s;
   s.precision(17); // round-trip: the budgets are checked to 1e-12
   s << "{\n";
-  s << "  \"scene\": \"" << sim.scene << "\",\n";
+  s << "  \"scene\": \"" << sim.run.scene << "\",\n";
   s << "  \"dim\": " << sim.grid.dim << ",\n";
   s << "  \"ranks\": " << sim.size << ",\n";
   s << "  \"cells\": [" << sim.grid.cells[0] << ", " << sim.grid.cells[1] << ", " << (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) << "],\n";
@@ -565,7 +565,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.run.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
   if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
   if (sim.ice) {
     char chemical[128] = "";

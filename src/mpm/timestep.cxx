@@ -46,7 +46,7 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
   }
   sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
   PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
-  const PetscReal remaining = sim.final_time - sim.time;
+  const PetscReal remaining = sim.run.final_time - sim.time;
   if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining; // end exactly at the final time
   PetscCall(PetscLogEventEnd(sim.ev_dt, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
