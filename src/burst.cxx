@@ -81,9 +81,11 @@ static PetscErrorCode SetUp(Simulation &sim)
     const Grid &g = sim.grid;
     IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}, sim.axisymmetric == PETSC_TRUE};
     if (!sim.materials.empty() && IceMaterialsRequested(sim.comm)) PetscCall(CouplingSolidMaterials(sim, spec.solids));
-    PetscCall(IceCreate(sim.comm, spec, sim.help, &sim.ice));
+    IceSolver *ice = nullptr;
+    PetscCall(IceCreate(sim.comm, spec, sim.help, &ice));
+    sim.ice.reset(ice);
     if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(sim));
-    if (!sim.ice && sim.coupling) PetscCall(CouplingDestroy(sim));
+    if (!sim.ice) sim.coupling.reset();
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }
   if (sim.help) {
@@ -223,8 +225,8 @@ static PetscErrorCode Main(Simulation &sim)
       RunLockRelease(); // the run is complete: the folder is free
     }
     main_phase = "clean-up";
-    PetscCall(CouplingDestroy(sim));
-    PetscCall(IceDestroy(&sim.ice));
+    sim.coupling.reset(); // before the gas it couples
+    sim.ice.reset();
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

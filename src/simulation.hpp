@@ -4,6 +4,7 @@
 #include "petsc_compat.hpp"
 #include "mpm/shape.hpp"
 #include "io/output.hpp"
+#include "ice/ice_fwd.hpp"
 #include "run_control.hpp"
 #include "mpm/fragments.hpp"
 #include "../models/material.hpp"
@@ -81,6 +82,18 @@ struct HeatConduction;
 
 // The Taylor impact scene (src/mpm/taylor.cxx), null unless -taylor.
 struct TaylorScene;
+
+// Simulation owns every component one way, a std::unique_ptr; the components only declared here
+// are deleted by their own files (so this header needs no more than their names).
+struct CouplingDeleter {
+  void operator()(Coupling *coupling) const; // src/coupling/coupling.cxx
+};
+struct HeatDeleter {
+  void operator()(HeatConduction *heat) const; // src/mpm/heat_conduction.cxx
+};
+struct TaylorSceneDeleter {
+  void operator()(TaylorScene *taylor) const; // src/mpm/taylor.cxx
+};
 
 struct Grid {
   PetscInt  dim = 2;
@@ -190,11 +203,11 @@ struct Simulation {
   std::vector<std::unique_ptr<Material>>  materials;
   std::vector<std::unique_ptr<Geometry>>  geometries;
   std::vector<LoadCurve>                  load_curves;
-  std::unique_ptr<AnalyticSolution>       analytic;
-  IceSolver                              *ice = nullptr;      // owned by the driver (burst.cxx)
-  Coupling                               *coupling = nullptr; // owned by the driver
-  std::shared_ptr<HeatConduction>         heat;               // null unless -mpm_heat_conduction
-  std::shared_ptr<TaylorScene>            taylor;             // null unless -taylor
+  std::unique_ptr<AnalyticSolution>                  analytic; // null unless -analytic
+  std::unique_ptr<IceSolver, IceSolverDeleter>       ice;      // null without gas materials
+  std::unique_ptr<Coupling, CouplingDeleter>         coupling; // null unless solids and gases
+  std::unique_ptr<HeatConduction, HeatDeleter>       heat;     // null unless -mpm_heat_conduction
+  std::unique_ptr<TaylorScene, TaylorSceneDeleter>   taylor;   // null unless -taylor
   Fragments                               fragments;          // the fragment search and the Grady estimate (fragments.cxx)
   bool HasParticles() const { return swarm != nullptr; }
 

@@ -69,7 +69,7 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
     eos->name_     = "solid_coupling";
     solids.push_back({mat.Name(), eos.release(), 300});
   }
-  sim.coupling         = c.release();
+  sim.coupling.reset(c.release());
   sim.ambient_pressure = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -473,12 +473,6 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingDestroy(Simulation &sim)
-{
-  PetscFunctionBeginUser;
-  delete sim.coupling;
-  sim.coupling = nullptr;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+void CouplingDeleter::operator()(Coupling *coupling) const { delete coupling; }
 
 } // namespace burst

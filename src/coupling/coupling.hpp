@@ -22,7 +22,6 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
 // After the particles and the gas exist: the projection objects, the first projection, and room
 // for the solids in the gas.
 PetscErrorCode CouplingSetUp(Simulation &sim);
-PetscErrorCode CouplingDestroy(Simulation &sim);
 
 // The coupled phases, in the order of src/step.cxx.
 PetscErrorCode CouplingProjectSolids(Simulation &sim);       // particles -> nodes -> cells (M, u, T)

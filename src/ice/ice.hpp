@@ -16,6 +16,7 @@
 // ice.md 7.1). This header knows nothing of MPM: the driver passes the node DMDA for its ownership.
 #pragma once
 #include "petsc_compat.hpp"
+#include "ice_fwd.hpp"
 #include "../../models/gas_eos/gas_eos.hpp"
 #include <petscdmda.h>
 #include <petscksp.h>
@@ -240,6 +241,7 @@ struct IceGridSpec {
   std::vector<IceSolidSpec> solids; // after the gases in material order
   bool      axisymmetric = false; // the grid is (r, z): the gas cells cannot be (they are Cartesian)
 };
+// *ice is null without gas materials (or with -help); the caller owns it (IceSolverDeleter).
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **ice);
 // Whether the options list gas materials (-ice_materials), before the solver is created.
 bool           IceMaterialsRequested(MPI_Comm comm);
@@ -248,7 +250,6 @@ PetscErrorCode IceSetInitialState(IceSolver &ice);
 // (perturbation.cxx; the acoustic and low_mach verification problems). Call after IceCreate.
 PetscErrorCode IceApplyPerturbation(IceSolver &ice);
 PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer);
-PetscErrorCode IceDestroy(IceSolver **ice);
 
 // The phases of one step, in order (src/step.cxx calls them).
 PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt);

@@ -588,12 +588,6 @@ IceSolver::~IceSolver()
   DMDestroy(&da);
 }
 
-PetscErrorCode IceDestroy(IceSolver **ice)
-{
-  PetscFunctionBeginUser;
-  delete *ice;
-  *ice = nullptr;
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
+void IceSolverDeleter::operator()(IceSolver *ice) const { delete ice; }
 
 } // namespace burst

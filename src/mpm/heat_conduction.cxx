@@ -72,7 +72,7 @@ struct HeatConduction {
 PetscErrorCode HeatConductionSetUp(Simulation &sim)
 {
   PetscBool on = PETSC_FALSE;
-  auto      heat = std::make_shared<HeatConduction>();
+  auto      heat = std::unique_ptr<HeatConduction, HeatDeleter>(new HeatConduction());
   const char *face_opt[3][2] = {{"-mpm_heat_bc_xmin", "-mpm_heat_bc_xmax"}, {"-mpm_heat_bc_ymin", "-mpm_heat_bc_ymax"}, {"-mpm_heat_bc_zmin", "-mpm_heat_bc_zmax"}};
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Heat conduction in the solids", "Heat");
@@ -119,8 +119,8 @@ PetscErrorCode HeatConductionSetUp(Simulation &sim)
   PetscCall(DMCreateLocalVector(heat->da, &heat->local));
   PetscCall(VecDuplicate(heat->local, &heat->scratch));
   PetscCall(PetscLogEventRegister("MPM_Heat", DM_CLASSID, &heat->event));
-  sim.heat = heat;
   PetscCall(PetscInfo(heat->da, "Heat conduction on, cfl %g\n", (double)heat->cfl));
+  sim.heat = std::move(heat);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -363,5 +363,7 @@ PetscErrorCode ConductHeat(Simulation &sim)
   PetscCall(PetscLogEventEnd(heat.event, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+void HeatDeleter::operator()(HeatConduction *object) const { delete object; }
 
 } // namespace burst

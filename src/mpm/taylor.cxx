@@ -98,7 +98,7 @@ static std::string Num(PetscReal x)
 PetscErrorCode TaylorSceneOptions(Simulation &sim)
 {
   PetscBool on = PETSC_FALSE, has_dim;
-  auto      t  = std::make_shared<TaylorScene>();
+  auto      t  = std::unique_ptr<TaylorScene, TaylorSceneDeleter>(new TaylorScene());
   char      material[PETSC_MAX_PATH_LEN];
   PetscInt  dim = 2;
   PetscFunctionBeginUser;
@@ -214,8 +214,8 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
   }
   PetscCall(SetDefault("-stop_kinetic_fraction", "0.01"));
   PetscCall(SetDefault("-final_time", Num(4 * t->length / t->velocity))); // a cap: the kinetic-energy stop ends it first
-  sim.taylor = t;
   PetscCall(PetscInfo(nullptr, "Taylor scene: L0 %g m, D0 %g m, U %g m/s, T0 %g K, material %s (%s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g m\n", (double)t->length, (double)t->diameter, (double)t->velocity, (double)t->temperature, mat.c_str(), path.c_str(), nr, nz, (double)h, (double)hz));
+  sim.taylor = std::move(t);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -364,5 +364,7 @@ PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &s)
   s << ", \"rod_particles\": " << t.particles << ", \"profile\": \"taylor_profile.csv\"},\n";
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+void TaylorSceneDeleter::operator()(TaylorScene *object) const { delete object; }
 
 } // namespace burst
