@@ -324,7 +324,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
             T -= 0.5 * u2 / cv;
             if (!(T > ice.dual_energy_fraction * E)) { // the internal-energy remap instead
               T = (rho_L * c[q_fields[dim + 1]] + outs[2 + dim][idx]) / rho;
-              ++ice.energy_fallbacks;
+              IceCountFallback(ice, c, idx);
               ++ice.energy_fallbacks_remap;
             } else if (cold) {
               if (n == 1) c[ice.Offset(m, icef::spvol)] = 1 / rho;

@@ -69,7 +69,8 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           PetscReal       cold_L      = 0;
           T_L = IceTemperatureForm(ice, c, ice.LocalIndex(i, j, k), m, &cold_L);
           if (eos.HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_L / eos.cv;
-          ++ice.energy_fallbacks;
+          IceCountFallback(ice, c, ice.LocalIndex(i, j, k));
+          ++ice.energy_fallbacks_exchange;
           ice.exchange_fallback_energy += V * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (T_L - T_before) + (eos.HasColdEnergy() ? cold_L - cold_before : 0));
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)T_L);
         }

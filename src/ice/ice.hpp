@@ -38,6 +38,14 @@ extern const char *const RiemannShapeNames[];
 // Most materials a cell holds (small dense exchange solves on the stack).
 inline constexpr int kIceMaxMaterials = 8;
 
+// The cells where a gas's energy falls back to a non-conservative form (IceCountFallback; summary.json's
+// gas block): a gas gains burnt mass there this step (the burning surface); the solids fill at least
+// 90 % of the cell (a pocket of gas in the steel or the charge); the solids hold part of it (a solid's
+// surface, a gap between fragments); no solid (open gas).
+enum class IceFallbackClass : int { Burning = 0, SolidFilled = 1, SolidSurface = 2, Open = 3 };
+inline constexpr int kIceFallbackClasses = 4;
+extern const char *const IceFallbackClassNames[];
+
 struct IceMaterial {
   std::string             name;
   std::unique_ptr<GasEOS> eos;
@@ -185,6 +193,8 @@ struct IceSolver {
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
   PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy or the internal-energy remap (this rank)
   PetscInt64 energy_fallbacks_remap = 0; // of those, the internal-energy remap's (advection.cxx; the rest are the sources')
+  PetscInt64 energy_fallbacks_exchange = 0; // of those, the exchange's (exchange.cxx: a total-energy temperature the drag heat left negative)
+  PetscInt64 energy_fallbacks_class[kIceFallbackClasses] = {}; // of all, by the class of their cell (IceCountFallback)
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
@@ -283,6 +293,9 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+// Counts one energy fallback of a gas in the cell c (local index idx) in ice.energy_fallbacks and in the
+// class of the cell (IceFallbackClass; sources.cxx).
+void           IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx);
 // Face pressure from continuity of acceleration between local cells L and R (sources.cxx):
 // (p_R rho_L + p_L rho_R)/(rho_L + rho_R), rho the sum of the bulk densities, Pa.
 PetscReal      IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L, PetscInt R);
