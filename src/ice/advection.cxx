@@ -330,7 +330,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
               if (n == 1) c[ice.Offset(m, icef::spvol)] = 1 / rho;
               T -= eos.ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]) / cv;
             }
-            if (!(T > 0) && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) T = c[ice.Offset(m, icef::temp_L)];
+            if (!(T > 0) && IceIsTrace(ice, c, m)) T = c[ice.Offset(m, icef::temp_L)];
           }
           if (!bad && !(T > 0) && !cold) bad = "temperature"; // with a cold energy the equilibration checks it
           if (!bad && !std::isfinite(T)) bad = "temperature";

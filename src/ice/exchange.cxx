@@ -55,7 +55,7 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
         const PetscReal V = ice.CellVolume(); // (the budgets' counters: J)
         for (PetscInt m = 0; m < N; ++m) {
           // a trace of gas did not pay for its kinetic energy (sources.cxx): it gets none back
-          const bool back = ice.conservative_energy && ice.drag_heating && (ice.materials[m].solid || c[ice.Offset(m, icef::theta)] >= ice.trace_fraction);
+          const bool back = ice.conservative_energy && ice.drag_heating && (ice.materials[m].solid || !IceIsTrace(ice, c, m));
           if (back) c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
           else ice.drag_energy_change -= V * c[ice.Offset(m, icef::rho_L)] * heat[m]; // the kinetic energy the drag removes, dropped
         }

@@ -138,6 +138,7 @@ struct IceSolver {
   PetscReal dt_fixed = 0;            // -ice_dt
   PetscReal rho_tiny = 1e-12;        // fraction of the material density kept where it is absent
   PetscReal trace_fraction = 1e-6;   // a gas below this volume fraction is a trace: no compression work, not in the CFL
+  PetscReal trace_mass = 0;          // a gas below this share of the cell's mass is a trace too (0: the volume fraction alone)
   PetscReal cfl_min_fraction = 0;    // a gas below this volume fraction sets the step by its speed, not its sound speed
   PetscReal outer_tolerance = 1e-8;  // semi-implicit: max |residual| / V over cells
   PetscInt  outer_max_iterations = 20;
@@ -293,6 +294,17 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+// Whether gas m is a trace in the cell c: below -ice_trace_fraction of its volume, or below
+// -ice_trace_mass of the cell's mass (a remnant at the rho_tiny level that has expanded past the
+// volume bound: doc/gas.md, the water-air tube)
+inline bool IceIsTrace(const IceSolver &ice, const PetscScalar *c, PetscInt m)
+{
+  if (c[ice.Offset(m, icef::theta)] < ice.trace_fraction) return true;
+  if (!(ice.trace_mass > 0)) return false;
+  PetscReal mass = 0;
+  for (PetscInt l = 0; l < ice.nmat; ++l) mass += c[ice.Offset(l, icef::rho)];
+  return c[ice.Offset(m, icef::rho)] < ice.trace_mass * mass;
+}
 // Counts one energy fallback of a gas in the cell c (local index idx) in ice.energy_fallbacks and in the
 // class of the cell (IceFallbackClass; sources.cxx).
 void           IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx);

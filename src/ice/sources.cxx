@@ -95,7 +95,7 @@ PetscErrorCode IceSources(IceSolver &ice)
         PetscReal conservative_total[kIceMaxMaterials];
         bool      split[kIceMaxMaterials];
         if (ice.mixed_cell_energy && ice.conservative_energy)
-          for (PetscInt m = 0; m < ice.ngas; ++m) gases_here += c[ice.Offset(m, icef::theta)] >= ice.trace_fraction;
+          for (PetscInt m = 0; m < ice.ngas; ++m) gases_here += !IceIsTrace(ice, c, m);
         const bool mixed = gases_here > 1;
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
@@ -126,7 +126,7 @@ PetscErrorCode IceSources(IceSolver &ice)
           bool       cold_from_faces = false, deferred = false;
           const bool cold = !mat.solid && mat.eos->HasColdEnergy();
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
-          else if (theta < ice.trace_fraction) {
+          else if (IceIsTrace(ice, c, m)) {
             // a trace of gas (a cell the solids fill): no compression work, which would heat a
             // mass of rho_tiny by the solids' pressure changes to absurd temperatures
             T_L = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + de) / (rho_L * mat.eos->cv);
