@@ -33,6 +33,7 @@ The exact solutions come from tests/riemann_exact.py: the closed form for ideal 
 import argparse
 import csv
 import hashlib
+import json
 import math
 import os
 import shutil
@@ -294,6 +295,17 @@ class Burst:
         return True, ""
 
 
+def fallback_counts(out):
+    """summary.json's gas block: the energy fallbacks, the exchange's and the remap's, and by cell class (None without
+    a summary)."""
+    path = os.path.join(out, "summary.json")
+    if not os.path.exists(path):
+        return None
+    with open(path) as f:
+        gas = json.load(f).get("gas", {})
+    return {k: v for k, v in gas.items() if k.startswith("energy_fallbacks")} or None
+
+
 def monitor_energy(out):
     """gas_total_energy of monitor.csv's first and last rows (None if absent)."""
     try:
@@ -361,6 +373,7 @@ def study(args, runner, label):
             continue
         r = measure(problem, out, args.presence)
         r["energy"] = monitor_energy(out)
+        r["fallbacks"] = fallback_counts(out)
         results.append(r)
 
     print(f"  {'cells':>5} {'steps':>6} {'plateau p (Pa)':>15} {'|p-p*|/p*':>10} {'cells in':>8} {'shock x (m)':>11} {'exact':>9} "
@@ -397,6 +410,17 @@ def study(args, runner, label):
             print(f"    {m}: least T {d['T_min']:.4g} K (all cells), {d['T_min_present']:.4g} K where theta > {args.presence:g}; "
                   f"least cell p where present {d['p_cell_min_present']:.4g} Pa, least P_{m}(rho_{m}/theta_{m}, T_{m}) where present "
                   f"{d['p_eos_min_present']:.4g} Pa")
+
+    for r in results:
+        fb = r.get("fallbacks")
+        if not fb:
+            continue
+        classes = fb.get("energy_fallbacks_by_class", {})
+        print(f"  {r['cells']} cells: energy fallbacks {fb['energy_fallbacks']} (exchange {fb.get('energy_fallbacks_exchange')}, "
+              f"remap {fb.get('energy_fallbacks_remap')}); by cell class " + ", ".join(f"{k} {v}" for k, v in classes.items()))
+        # the classes partition the count, and a tube holds no solid: every one is open gas
+        if sum(classes.values()) != fb["energy_fallbacks"] or any(v for k, v in classes.items() if k != "open"):
+            failures.append(f"{r['cells']} cells: fallback classes")
 
     if hasattr(runner, "identity") and runner.identity() != identity:
         print(f"  the executable changed during the study (now {runner.identity()}): the grids may come from different builds")

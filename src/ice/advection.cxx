@@ -324,13 +324,13 @@ PetscErrorCode IceAdvect(IceSolver &ice)
             T -= 0.5 * u2 / cv;
             if (!(T > ice.dual_energy_fraction * E)) { // the internal-energy remap instead
               T = (rho_L * c[q_fields[dim + 1]] + outs[2 + dim][idx]) / rho;
-              ++ice.energy_fallbacks;
+              IceCountFallback(ice, c, idx);
               ++ice.energy_fallbacks_remap;
             } else if (cold) {
               if (n == 1) c[ice.Offset(m, icef::spvol)] = 1 / rho;
               T -= eos.ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]) / cv;
             }
-            if (!(T > 0) && c[ice.Offset(m, icef::theta)] < ice.trace_fraction) T = c[ice.Offset(m, icef::temp_L)];
+            if (!(T > 0) && IceIsTrace(ice, c, m)) T = c[ice.Offset(m, icef::temp_L)];
           }
           if (!bad && !(T > 0) && !cold) bad = "temperature"; // with a cold energy the equilibration checks it
           if (!bad && !std::isfinite(T)) bad = "temperature";

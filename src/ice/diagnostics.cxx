@@ -119,7 +119,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
   // energy and less the face work it books: in a cell that books it, a -p dV fallback; elsewhere a
   // trace's pressure acceleration without work. (A total-energy temperature that stays negative for
   // the exchange is the exchange's fallback, exchange.cxx.)
-  auto      booked = [&](const PetscScalar *c, PetscInt m) { return ice.conservative_energy && c[ice.Offset(m, icef::theta)] >= ice.trace_fraction; };
+  auto      booked = [&](const PetscScalar *c, PetscInt m) { return ice.conservative_energy && !IceIsTrace(ice, c, m); };
   PetscReal energy = 0; // the gases' total energy as IceSources found it, against the step's start
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
@@ -198,7 +198,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
               const PetscReal theta = a[idx * S + ice.Offset(m, icef::theta)], p_felt = m < ice.ngas ? p + q : p;
               ice.boundary.impulse[d] -= outward * ice.dt * theta * p_felt * A; // -dt theta grad (p + q): the face's share
               // the face work of the conservative energy form (gases that are not a trace only, as IceSources)
-              if (m >= ice.ngas || !ice.conservative_energy || theta < ice.trace_fraction) continue;
+              if (m >= ice.ngas || !ice.conservative_energy || IceIsTrace(ice, a + idx * S, m)) continue;
               const PetscReal u       = ice.face_vel[d][R * n + m];
               const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
               ice.boundary.work += outward * ice.dt * A * p_felt * theta_f * u;

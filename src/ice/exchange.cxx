@@ -38,6 +38,10 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
         // |u_m' - u_cm|^2)/2 per unit mass: the kinetic energy of its own slip that the drag
         // removes, >= 0 while the exchange brings every material towards u_cm.
         PetscReal heat[kIceMaxMaterials] = {0};
+        // u_cm . (u_L - u) per unit mass: the pressure source's work on a material that the drag
+        // carries at the cell's centre-of-mass velocity; the drag hands it to the others (the
+        // fallbacks' PetscInfo below)
+        PetscReal carried[kIceMaxMaterials] = {0};
         for (PetscInt d = 0; d < dim; ++d) {
           PetscReal mass = 0, momentum = 0, u_old[kIceMaxMaterials];
           for (PetscInt m = 0; m < N; ++m) {
@@ -49,13 +53,14 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           const PetscReal u_cm = momentum / mass;
           for (PetscInt m = 0; m < N; ++m) {
             heat[m] += (q[m] - u_old[m]) * (u_cm - 0.5 * (q[m] + u_old[m]));
+            carried[m] += u_cm * (u_old[m] - c[ice.Offset(m, icef::vel + d)]);
             c[ice.Offset(m, icef::vel_L + d)] = q[m];
           }
         }
         const PetscReal V = ice.CellVolume(); // (the budgets' counters: J)
         for (PetscInt m = 0; m < N; ++m) {
           // a trace of gas did not pay for its kinetic energy (sources.cxx): it gets none back
-          const bool back = ice.conservative_energy && ice.drag_heating && (ice.materials[m].solid || c[ice.Offset(m, icef::theta)] >= ice.trace_fraction);
+          const bool back = ice.conservative_energy && ice.drag_heating && (ice.materials[m].solid || !IceIsTrace(ice, c, m));
           if (back) c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
           else ice.drag_energy_change -= V * c[ice.Offset(m, icef::rho_L)] * heat[m]; // the kinetic energy the drag removes, dropped
         }
@@ -69,7 +74,11 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           PetscReal       cold_L      = 0;
           T_L = IceTemperatureForm(ice, c, ice.LocalIndex(i, j, k), m, &cold_L);
           if (eos.HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_L / eos.cv;
-          ++ice.energy_fallbacks;
+          IceCountFallback(ice, c, ice.LocalIndex(i, j, k));
+          ++ice.energy_fallbacks_exchange;
+          PetscReal solid = 0;
+          for (PetscInt l = ice.ngas; l < N; ++l) solid += c[ice.Offset(l, icef::theta)];
+          PetscCall(PetscInfo(nullptr, "Gas step %" PetscInt_FMT ": exchange fallback of %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): volume fraction %g, solids' %g; temperature %g K after the drag heat %g J/kg; the pressure source's work carried at the centre-of-mass velocity %g J/kg, c_v T %g J/kg\n", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)c[ice.Offset(m, icef::theta)], (double)solid, (double)T_before, (double)heat[m], (double)carried[m], (double)(eos.cv * c[ice.Offset(m, icef::temp)])));
           ice.exchange_fallback_energy += V * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (T_L - T_before) + (eos.HasColdEnergy() ? cold_L - cold_before : 0));
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)T_L);
         }

@@ -39,6 +39,14 @@ extern const char *const RiemannShapeNames[];
 // Most materials a cell holds (small dense exchange solves on the stack).
 inline constexpr int kIceMaxMaterials = 8;
 
+// The cells where a gas's energy falls back to a non-conservative form (IceCountFallback; summary.json's
+// gas block): a gas gains burnt mass there this step (the burning surface); the solids fill at least
+// 90 % of the cell (a pocket of gas in the steel or the charge); the solids hold part of it (a solid's
+// surface, a gap between fragments); no solid (open gas).
+enum class IceFallbackClass : int { Burning = 0, SolidFilled = 1, SolidSurface = 2, Open = 3 };
+inline constexpr int kIceFallbackClasses = 4;
+extern const char *const IceFallbackClassNames[];
+
 struct IceMaterial {
   std::string             name;
   std::unique_ptr<GasEOS> eos;
@@ -131,6 +139,7 @@ struct IceSolver {
   PetscReal dt_fixed = 0;            // -ice_dt
   PetscReal rho_tiny = 1e-12;        // fraction of the material density kept where it is absent
   PetscReal trace_fraction = 1e-6;   // a gas below this volume fraction is a trace: no compression work, not in the CFL
+  PetscReal trace_mass = 0;          // a gas below this share of the cell's mass is a trace too (0: the volume fraction alone)
   PetscReal cfl_min_fraction = 0;    // a gas below this volume fraction sets the step by its speed, not its sound speed
   PetscReal outer_tolerance = 1e-8;  // semi-implicit: max |residual| / V over cells
   PetscInt  outer_max_iterations = 20;
@@ -186,6 +195,8 @@ struct IceSolver {
   PetscInt64 ksp_iterations_total = 0, pressure_solves = 0;
   PetscInt64 energy_fallbacks = 0; // cells and materials that fell back to the -p dV energy or the internal-energy remap (this rank)
   PetscInt64 energy_fallbacks_remap = 0; // of those, the internal-energy remap's (advection.cxx; the rest are the sources')
+  PetscInt64 energy_fallbacks_exchange = 0; // of those, the exchange's (exchange.cxx: a total-energy temperature the drag heat left negative)
+  PetscInt64 energy_fallbacks_class[kIceFallbackClasses] = {}; // of all, by the class of their cell (IceCountFallback)
   PetscReal  peak_pressure = 0, peak_pressure_time = 0; // the largest cell pressure seen by the monitor, and when
   PetscReal  dual_energy_fraction = 1e-3; // below this share of the total energy the remap takes the internal energy
   IceTotals initial;
@@ -285,6 +296,20 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+// Whether gas m is a trace in the cell c: below -ice_trace_fraction of its volume, or below
+// -ice_trace_mass of the cell's mass (a remnant at the rho_tiny level that has expanded past the
+// volume bound: doc/gas.md, the water-air tube)
+inline bool IceIsTrace(const IceSolver &ice, const PetscScalar *c, PetscInt m)
+{
+  if (c[ice.Offset(m, icef::theta)] < ice.trace_fraction) return true;
+  if (!(ice.trace_mass > 0)) return false;
+  PetscReal mass = 0;
+  for (PetscInt l = 0; l < ice.nmat; ++l) mass += c[ice.Offset(l, icef::rho)];
+  return c[ice.Offset(m, icef::rho)] < ice.trace_mass * mass;
+}
+// Counts one energy fallback of a gas in the cell c (local index idx) in ice.energy_fallbacks and in the
+// class of the cell (IceFallbackClass; sources.cxx).
+void           IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx);
 // Face pressure from continuity of acceleration between local cells L and R (sources.cxx):
 // (p_R rho_L + p_L rho_R)/(rho_L + rho_R), rho the sum of the bulk densities, Pa.
 PetscReal      IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L, PetscInt R);

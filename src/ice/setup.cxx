@@ -132,6 +132,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCall(CheckRange(ice.comm, "-ice_rho_tiny", ice.rho_tiny, 0, 1e-3, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-ice_trace_fraction", "A gas below this volume fraction in a cell is a trace: it does no compression work and does not set the time step", "", ice.trace_fraction, &ice.trace_fraction, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_trace_fraction", ice.trace_fraction, 0, 1e-2, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-ice_trace_mass", "A gas below this share of its cell's mass is a trace too, whatever its volume fraction (0: the volume fraction alone)", "", ice.trace_mass, &ice.trace_mass, nullptr));
+  PetscCall(CheckRange(ice.comm, "-ice_trace_mass", ice.trace_mass, 0, 1e-3, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_cfl_min_fraction", "A gas below this volume fraction in a cell (a pocket in a solid) limits the time step by its flow speed only, not its sound speed; 0 = every gas above the trace fraction by both, in [0, 0.5]", "", ice.cfl_min_fraction, &ice.cfl_min_fraction, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_cfl_min_fraction", ice.cfl_min_fraction, 0, 0.5, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_outer_tolerance", "Semi-implicit: outer iterations stop when max_c |residual_c|/V < this (relative volume)", "", ice.outer_tolerance, &ice.outer_tolerance, nullptr));

@@ -35,6 +35,19 @@ PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscIn
   return (rho * eos.cv * c[ice.Offset(m, icef::temp)] + pdv + de) / (rho_L * eos.cv);
 }
 
+const char *const IceFallbackClassNames[] = {"burning", "solid_filled", "solid_surface", "open"};
+
+void IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx)
+{
+  PetscReal solid = 0; // the solids' volume fraction
+  bool      burning = false;
+  for (PetscInt m = ice.ngas; m < ice.nmat; ++m) solid += c[ice.Offset(m, icef::theta)];
+  for (PetscInt m = 0; m < ice.ngas && ice.has_mass_source; ++m) burning = burning || ice.mass_source[idx * ice.nmat + m] > 0;
+  const IceFallbackClass k = burning ? IceFallbackClass::Burning : solid >= 0.9 ? IceFallbackClass::SolidFilled : solid > ice.trace_fraction ? IceFallbackClass::SolidSurface : IceFallbackClass::Open;
+  ++ice.energy_fallbacks;
+  ++ice.energy_fallbacks_class[(int)k];
+}
+
 PetscReal IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L, PetscInt R)
 {
   const PetscScalar *cL = a + L * ice.stride, *cR = a + R * ice.stride;
@@ -82,7 +95,7 @@ PetscErrorCode IceSources(IceSolver &ice)
         PetscReal conservative_total[kIceMaxMaterials];
         bool      split[kIceMaxMaterials];
         if (ice.mixed_cell_energy && ice.conservative_energy)
-          for (PetscInt m = 0; m < ice.ngas; ++m) gases_here += c[ice.Offset(m, icef::theta)] >= ice.trace_fraction;
+          for (PetscInt m = 0; m < ice.ngas; ++m) gases_here += !IceIsTrace(ice, c, m);
         const bool mixed = gases_here > 1;
         for (PetscInt m = 0; m < n; ++m) {
           const IceMaterial &mat   = ice.materials[m];
@@ -113,7 +126,7 @@ PetscErrorCode IceSources(IceSolver &ice)
           bool       cold_from_faces = false, deferred = false;
           const bool cold = !mat.solid && mat.eos->HasColdEnergy();
           if (mat.solid) T_L = c[ice.Offset(m, icef::temp)]; // MPM computes the solid's own work
-          else if (theta < ice.trace_fraction) {
+          else if (IceIsTrace(ice, c, m)) {
             // a trace of gas (a cell the solids fill): no compression work, which would heat a
             // mass of rho_tiny by the solids' pressure changes to absurd temperatures
             T_L = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + de) / (rho_L * mat.eos->cv);
@@ -156,7 +169,7 @@ PetscErrorCode IceSources(IceSolver &ice)
             // checks; alone, keep the -p dV form here and count it
             if (!(T_L > 0) && !drag_settles) {
               T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
-              ++ice.energy_fallbacks;
+              IceCountFallback(ice, c, idx);
               cold_from_faces = false;
               if (mixed) split[m] = false;
             }

@@ -25,7 +25,7 @@ PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt m = 0; m < ice.ngas; ++m) { // the MPM limit covers the solids (ice.md 7.5)
           const PetscReal theta = c[ice.Offset(m, icef::theta)];
-          if (theta < ice.trace_fraction) continue; // a trace does not set the step
+          if (IceIsTrace(ice, c, m)) continue; // a trace does not set the step
           // a minor gas (a pocket in a solid's cell) sets it through its speed only: its sound speed
           // is not the cell's (sum theta kappa is the solid's there, ice.md 7.5)
           const PetscReal rho_micro = 1 / c[ice.Offset(m, icef::spvol)];

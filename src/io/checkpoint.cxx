@@ -105,7 +105,8 @@ enum RankValue : int {
   kBcImpulse = kRemovedMomentum + 3,      // 3
   kDragEnergyChange = kBcImpulse + 3,     // the gas's energy diagnostics, IceSolver::EnergyDiagnostics order
   kCouplingCounters = kDragEnergyChange + IceSolver::kEnergyDiagnostics, // the coupling's budget counters
-  kNumRankValues = kCouplingCounters + kNumCouplingCounters
+  kFallbackCounters = kCouplingCounters + kNumCouplingCounters, // the gas's energy fallbacks: the remap's, the exchange's, then by cell class
+  kNumRankValues = kFallbackCounters + 2 + kIceFallbackClasses
 };
 
 // ---- Identity and integrity --------------------------------------------------------------------
@@ -607,6 +608,11 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
   mine[kBurntMass]         = sim.coupling ? sim.coupling->burnt_mass : 0;
   mine[kEnergyFallbacks]   = sim.ice ? (PetscReal)sim.ice->energy_fallbacks : 0;
   mine[kLocalParticles]    = (PetscReal)n;
+  if (sim.ice) {
+    mine[kFallbackCounters]     = (PetscReal)sim.ice->energy_fallbacks_remap;
+    mine[kFallbackCounters + 1] = (PetscReal)sim.ice->energy_fallbacks_exchange;
+    for (int k = 0; k < kIceFallbackClasses; ++k) mine[kFallbackCounters + 2 + k] = (PetscReal)sim.ice->energy_fallbacks_class[k];
+  }
   if (sim.ice) {
     const IceBoundaryBudget &f = sim.ice->boundary;
     const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
@@ -1141,7 +1147,12 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   sim.diag.removed_mass      = mine[kRemovedMass];
   sim.diag.removed_particles = (PetscInt)mine[kRemovedParticles];
   if (sim.coupling) sim.coupling->burnt_mass = mine[kBurntMass];
-  if (sim.ice) sim.ice->energy_fallbacks = (PetscInt64)mine[kEnergyFallbacks];
+  if (sim.ice) {
+    sim.ice->energy_fallbacks          = (PetscInt64)mine[kEnergyFallbacks];
+    sim.ice->energy_fallbacks_remap    = (PetscInt64)mine[kFallbackCounters];
+    sim.ice->energy_fallbacks_exchange = (PetscInt64)mine[kFallbackCounters + 1];
+    for (int k = 0; k < kIceFallbackClasses; ++k) sim.ice->energy_fallbacks_class[k] = (PetscInt64)mine[kFallbackCounters + 2 + k];
+  }
   if (sim.ice) {
     IceBoundaryBudget &f = sim.ice->boundary;
     f.mass               = mine[kBoundaryBudget];

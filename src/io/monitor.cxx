@@ -436,6 +436,9 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscInt64 fallbacks_remap = 0; // of those, the advection's internal-energy remap
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks_remap, &fallbacks_remap, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  PetscInt64 fallbacks_exchange = 0, fallbacks_class[kIceFallbackClasses] = {}; // the exchange's; all by cell class (IceFallbackClass)
+  if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks_exchange, &fallbacks_exchange, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  if (sim.ice) PetscCallMPI(MPI_Allreduce(sim.ice->energy_fallbacks_class, fallbacks_class, kIceFallbackClasses, MPIU_INT64, MPI_SUM, sim.comm));
   PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
   const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
@@ -514,7 +517,9 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
     const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
     s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
-    s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
+    s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"energy_fallbacks_exchange\": " << fallbacks_exchange << ", \"energy_fallbacks_by_class\": {";
+    for (int k = 0; k < kIceFallbackClasses; ++k) s << (k ? ", " : "") << "\"" << IceFallbackClassNames[k] << "\": " << fallbacks_class[k];
+    s << "}, \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }
   if (sim.ice) { // the budgets (ComputeBudget)
