@@ -5,6 +5,7 @@ last particle, grid and gas files (every dataset, exact equality). For a change 
 behaviour (a refactor): build the old tree and the new one, then
 
   python3 scripts/compare_builds.py --old /tmp/old/build/burst --new build/burst [--only NAME,...]
+                                   [--allow-new-fields]
 
 The runs cover every scene of options/scenes/ (coarse, a few dozen steps) on 1 and 2 ranks, the
 material-point driver and the decks whose models or phases the scenes do not reach. Exits 1 on the
@@ -83,14 +84,17 @@ def h5_datasets(path):
     return data
 
 
-def compare(a, b):
-    """The first difference between two output folders, or None."""
+def compare(a, b, allow_new=False):
+    """The first difference between two output folders, or None (with allow_new, summary fields that
+    only the new build writes are no difference)."""
     sa, sb = os.path.join(a, "summary.json"), os.path.join(b, "summary.json")
     if os.path.exists(sa) != os.path.exists(sb):
         return "summary.json: written by one build only"
     if os.path.exists(sa):
         fa, fb = summary_fields(json.load(open(sa))), summary_fields(json.load(open(sb)))
         for k in sorted(set(fa) | set(fb)):
+            if allow_new and k not in fa:
+                continue
             if fa.get(k) != fb.get(k):
                 return f"summary.json {k}: {fa.get(k)!r} against {fb.get(k)!r}"
     for name in ("monitor.csv", "fragments.csv", "point.csv"):
@@ -123,6 +127,7 @@ def main():
     ap.add_argument("--new", default=os.path.join(ROOT, "build", "burst"), help="the executable under test")
     ap.add_argument("--only", default="", help="comma-separated run names (default: all)")
     ap.add_argument("--keep", action="store_true", help="keep the output folders")
+    ap.add_argument("--allow-new-fields", action="store_true", help="summary fields that only the new build writes are no difference")
     args = ap.parse_args()
     only = set(filter(None, args.only.split(",")))
     work = tempfile.mkdtemp(prefix="compare_builds_")
@@ -143,7 +148,7 @@ def main():
                 print(f"{name:34s} DIFFERS: {diff}\n{log_new[-2000:]}")
                 failures += 1
             continue
-        diff = compare(os.path.join(work, f"{name}_old"), os.path.join(work, f"{name}_new"))
+        diff = compare(os.path.join(work, f"{name}_old"), os.path.join(work, f"{name}_new"), args.allow_new_fields)
         print(f"{name:34s} {'DIFFERS: ' + diff if diff else 'bit for bit'} ({ranks} rank{'s' if ranks > 1 else ''})")
         failures += diff is not None
         sys.stdout.flush()
