@@ -269,6 +269,37 @@ def failed_temperature(args):
     finish("failed_temperature", failures)
 
 
+def failed_closing_temperature(args):
+    """A no_tension point of the HY-100 scene's set (Mie-Gruneisen, Gamma = Gamma0 rho0/rho) fails in
+    hydrostatic expansion, opens to J = 11 and closes again to J = 6 (-point_reverse_strain): opened it
+    carries no pressure, so closing does no work and its temperature stays as it was when it failed.
+    The isentropic term -Gamma T tr(D) dt applied while it closes (Gamma0 J = 19 at J = 11) takes it
+    from 575 K to 9.7e5 K (the ratchet that heated a failed fragment of the exploding HY-100 cylinder
+    to 1e8 K); a closing point that carries pressure (J < 1, response none) still heats."""
+    failures = []
+    base = ["-options_file", os.path.join(ROOT, "options/materials/hy100_paper.opts"), "-point_path", "velocity_gradient",
+            "-point_velocity_gradient", "1,0,0,0,1,0,0,0,1", "-point_rate", "1000", "-point_temperature", "600"]
+    with tempfile.TemporaryDirectory() as tmp:
+        rows = point(args.burst, base + ["-hy100_failure_response", "no_tension", "-point_reverse_strain", "0.8", "-point_final_strain", "1.0",
+                                         "-point_steps", "200"], os.path.join(tmp, "open_close.csv"))
+        closed = point(args.burst, base + ["-hy100_failure_response", "none", "-point_velocity_gradient", "-1,0,0,0,-1,0,0,0,-1",
+                                           "-point_final_strain", "0.01", "-point_steps", "20"], os.path.join(tmp, "compressed.csv"))
+    J = np.array([row["F_xx"] * row["F_yy"] for row in rows]) ** 1.5  # F = f I: J = F_xx^3
+    first = next(i for i, row in enumerate(rows) if int(row["failed"]))
+    top = int(np.argmax(J))
+    T_fail, T_top, T_end = float(rows[first]["temperature"]), float(rows[top]["temperature"]), float(rows[-1]["temperature"])
+    print(f"  failed at step {first} (J = {J[first]:.3f}) at {T_fail:.3f} K; opened to J = {J[top]:.2f} at {T_top:.3f} K; closed to J = {J[-1]:.2f} at {T_end:.3f} K")
+    check("opened to J > 10 and closed to J < 7 (path)", 0.0 if J[top] > 10 and J[-1] < 7 else 1.0, 0, failures)
+    check("no_tension, open: |p| (Pa)", max(abs(float(r["pressure"])) for r in rows[first + 1:]), 0, failures)
+    check("no_tension: |T_end - T_at_failure| / T_at_failure (closing does no work)", abs(T_end - T_fail) / T_fail, 1e-12, failures)
+    T0, T1 = float(closed[0]["temperature"]), float(closed[-1]["temperature"])
+    ok = T1 > T0
+    print(f"  an intact point compressed 3 % by volume heats isentropically: {T0:.3f} -> {T1:.3f} K {'OK' if ok else 'FAIL'}")
+    if not ok:
+        failures.append("isentropic heating under pressure")
+    finish("failed_closing_temperature", failures)
+
+
 # Johnson & Cook (1985) 4340 Rc 30 data (verification.md 5): rate, T0, stress at eps_p 0/0.05/0.10/0.20 (MPa)
 JC_DATA = [("tension", 0.002, 298, [808.7, 968.9, 1042.8, 1135.1]), ("torsion", 0.009, 298, [798.2, 933.4, 988.4, 1027.1]),
            ("torsion", 0.1, 298, [774.9, 899.0, 961.8, 1006.1]), ("torsion", 1.1, 298, [865.6, 1003.3, 1067.1, 1114.7]),
@@ -314,9 +345,11 @@ def main():
     sub.add_parser("rotation")
     sub.add_parser("failure_response")
     sub.add_parser("failed_temperature")
+    sub.add_parser("failed_closing_temperature")
     args = p.parse_args()
     {"simple_shear": simple_shear, "linear_hardening": linear_hardening, "heating": heating, "jc_4340": jc_4340, "rotation": rotation,
-     "failure_response": failure_response, "failed_temperature": failed_temperature}[args.cmd](args)
+     "failure_response": failure_response, "failed_temperature": failed_temperature,
+     "failed_closing_temperature": failed_closing_temperature}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -555,9 +555,13 @@ public:
       // heating nor the isentropic cooling -Gamma T tr(D) dt, which would take a failed fragment
       // that swells freely from 600 K to a few kelvin; its temperature stays as it failed, with or
       // without a gas around it (the coupling takes its mass and temperature, never its volume).
-      // The same holds for no_tension while the point opens (it carries no pressure then) and for
-      // every response's deviator; a failed point still heats when it is compressed under pressure.
-      const bool holds_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && c.trace_D[k] < 0);
+      // The same holds for no_tension while it carries no pressure (p <= 0, the test of the
+      // response below) and for every response's deviator; a failed point still heats when it is
+      // compressed under pressure. An opened no_tension point that closes (tr D < 0, p <= 0) does no
+      // work either: with Gamma = Gamma0 rho0/rho (Mie-Gruneisen; 20 at J = 12) the term would
+      // multiply T by exp(Gamma0 dJ) per closing while expansions leave it, a ratchet that took a
+      // failed HY-100 particle from 1e4 K to 1e8 K and its gas cells to 1e9 K (the step to 3e-10 s).
+      const bool holds_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && c.pressure[k] > 0);
       const bool inert          = failure_response != FailureResponse::None && state.failed[c.index[k]] && !holds_pressure;
       if (adiabatic && !inert) c.temperature[k] += taylor_quinney * matrix * c.flow_stress[k] * de / (c.density[k] * c.specific_heat[k]) - c.gruneisen[k] * c.temperature[k] * c.trace_D[k] * c.dt;
       c.triaxiality[k] = c.equivalent_stress[k] > 0 ? -c.pressure[k] / c.equivalent_stress[k] : (c.pressure[k] < 0 ? PETSC_INFINITY : (c.pressure[k] > 0 ? PETSC_NINFINITY : 0));

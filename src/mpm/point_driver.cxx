@@ -15,7 +15,9 @@
 //                       -point_rotation_angle (rad) about z over the run (verification.md 1.4); F is
 //                       set exactly and L = (F_{n+1} - F_n) F_{n+1/2}^{-1} / dt. The CSV stress is
 //                       rotated back by R(theta)^T so it compares with the unrotated path.
-// The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad).
+// The path runs to -point_final_strain (strain r t, shear r t, angle r t in rad). With
+// -point_reverse_strain s it turns back at strain s (L becomes -L; not for the rotating path), e.g.
+// to open a failed point and close it again; the strain column then goes back down.
 // CSV columns: step, time, strain, stress, pressure, von Mises, temperature, F and the metal models'
 // state; then every other scalar field the material lists in OutputFields, by its name (e.g. crack_radius).
 #include "simulation.hpp"
@@ -42,6 +44,7 @@ struct PointOptions {
   PetscBool   adiabatic     = PETSC_TRUE;
   PetscReal   L_hat[9]      = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscReal   rotation_angle = 2 * PETSC_PI; // rad, rotating_uniaxial_strain
+  PetscReal   reverse_strain = 0;            // the path turns back at this strain (0: never)
   std::string output        = "point.csv";
   std::string material;
 };
@@ -60,6 +63,9 @@ PetscErrorCode ReadPointOptions(MPI_Comm comm, PointOptions &o)
   PetscCall(CheckRange(comm, "-point_temperature", o.temperature, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-point_final_strain", "Final strain (shear strain, angle in rad) of the path, > 0", "", o.final_strain, &o.final_strain, nullptr));
   PetscCall(CheckRange(comm, "-point_final_strain", o.final_strain, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-point_reverse_strain", "Strain at which the path turns back (L becomes -L) (-), >= 0 (0: never; not for rotating_uniaxial_strain)", "", o.reverse_strain, &o.reverse_strain, nullptr));
+  PetscCall(CheckRange(comm, "-point_reverse_strain", o.reverse_strain, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCheck(o.reverse_strain == 0 || o.path != RotatingUniaxialStrain, comm, PETSC_ERR_USER_INPUT, "Option -point_reverse_strain is not available with -point_path rotating_uniaxial_strain");
   PetscCall(PetscOptionsInt("-point_steps", "Number of steps, >= 1", "", o.steps, &o.steps, nullptr));
   PetscCheck(o.steps >= 1, comm, PETSC_ERR_USER_INPUT, "Option -point_steps = %" PetscInt_FMT " is out of range: it must be >= 1", o.steps);
   PetscCall(PetscOptionsBool("-point_adiabatic", "Keep the plastic heating (adiabatic); false resets the temperature every step (isothermal)", "", o.adiabatic, &o.adiabatic, nullptr));
@@ -197,8 +203,11 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     std::fprintf(out, "\n");
   }
   PetscReal   lateral_rate    = 0;
+  // the path's strain at the end of a step (back down after -point_reverse_strain)
+  auto path_strain = [&](PetscInt step) { const PetscReal s = o.rate * step * dt; return o.reverse_strain > 0 && s > o.reverse_strain ? 2 * o.reverse_strain - s : s; };
   for (PetscInt step = 0; step <= o.steps; ++step) {
     if (step > 0) {
+      const PetscReal direction = path_strain(step) < path_strain(step - 1) ? -1 : 1; // the step turning back takes its mean direction
       // trial step on point 1 from the state of point 0; iterate a for uniaxial stress (secant)
       PetscReal a0 = lateral_rate, a1 = lateral_rate - 0.3 * o.rate, r0 = 0, r1 = 0;
       for (int it = 0; it < 50; ++it) {
@@ -214,7 +223,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         PetscCall(f.Get(field::volume0, &V0));
         PetscCall(f.Get(field::temperature, &T));
         PetscCall(f.Get(field::stress, &sigma));
-        Mat3 L = PathVelocityGradient(o, a);
+        Mat3 L = direction * PathVelocityGradient(o, direction * a);
         if (o.path == RotatingUniaxialStrain) {
           const Mat3 F0 = RotatingF(o, (step - 1) * dt, total_time), F1 = RotatingF(o, step * dt, total_time);
           L               = (F1 - F0) * (0.5 * (F0 + F1)).inverse() / dt;
@@ -294,7 +303,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     dev.diagonal().array() += p;
     const PetscReal q = std::sqrt(1.5 * dev.squaredNorm());
     if (out)
-      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)(o.rate * step * dt), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)path_strain(step), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
     for (const char *name : extra) {
       const PetscReal *v;
       PetscCall(f.Get(name, &v));
