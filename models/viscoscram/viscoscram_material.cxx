@@ -110,7 +110,7 @@ public:
   {
     const MaterialState &fields   = *mp.state;
     const PetscInt      *material = mp.material;
-    PetscReal           *S, *R, *c, *heat_v, *heat_c;
+    PetscReal           *S = nullptr, *R = nullptr, *c = nullptr, *heat_v = nullptr, *heat_c = nullptr;
     PetscFunctionBeginUser;
     PetscCall(fields.Get(kElementStress, &S));
     PetscCall(fields.Get(kRotation, &R));
@@ -130,7 +130,7 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &mp, PetscInt id, PetscReal dt) override
   {
     const MaterialState &fields = *mp.state;
-    PetscReal           *S, *R, *c, *heat_v, *heat_c;
+    PetscReal           *S = nullptr, *R = nullptr, *c = nullptr, *heat_v = nullptr, *heat_c = nullptr;
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(fields.Get(kElementStress, &S));
