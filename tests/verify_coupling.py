@@ -448,8 +448,8 @@ def exploding(args):
     coarse grid, the first tens of microseconds): the burn and the outward push. Full form
     (--fragments, label validation): runs to the end, reports the count beside the Grady band."""
     failures = []
-    deck = "options/scenes/exploding_cylinder2d.opts"
-    o = options(deck)
+    deck = args.deck
+    o = options("options/scenes/exploding_cylinder2d.opts") # the geometry (a switch file includes the scene)
     a, b = float(o["-wall_inner_radius"]), float(o["-wall_radius"])
     steel = 0.25 * math.pi * (b * b - a * a) * float(o["-grady_density"])
     out = scratch()
@@ -535,6 +535,7 @@ def main():
     ex.add_argument("--ranks", type=int, default=1)
     ex.add_argument("--fragments", action="store_true", help="the full run: report the fragments")
     ex.add_argument("--extra", default="")
+    ex.add_argument("--deck", default="options/scenes/exploding_cylinder2d.opts", help="the scene file, or a switch file that includes it (e.g. options/scenes/exploding_cylinder2d_elastic.opts)")
     bs = sub.add_parser("burn_symmetry")
     bs.add_argument("--rate", type=float, default=1.0, help="Simple Burn A (kg/(m^2 s))")
     bs.add_argument("--final-time", type=float, default=1e-4)
