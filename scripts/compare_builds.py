@@ -24,6 +24,8 @@ import tempfile
 import numpy as np
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(ROOT, "tests"))
+from verify_checkpoint import h5_arrays  # noqa: E402  (every dataset of an HDF5 file)
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe"]
 WALL_CLOCK = ("wall_time", "per_second", "seconds")  # summary fields that time the machine, not the physics
 
@@ -76,14 +78,6 @@ def summary_fields(d, prefix=""):
     return out
 
 
-def h5_datasets(path):
-    import h5py
-    data = {}
-    with h5py.File(path, "r") as f:
-        f.visititems(lambda name, obj: data.__setitem__(name, obj[()]) if isinstance(obj, h5py.Dataset) else None)
-    return data
-
-
 def compare(a, b, allow_new=False):
     """The first difference between two output folders, or None (with allow_new, summary fields that
     only the new build writes are no difference)."""
@@ -111,7 +105,7 @@ def compare(a, b, allow_new=False):
             return f"{stem}_*.h5: different files"
         if not la:
             continue
-        da, db = h5_datasets(la[-1]), h5_datasets(lb[-1])
+        da, db = h5_arrays(la[-1]), h5_arrays(lb[-1])
         if sorted(da) != sorted(db):
             return f"{os.path.basename(la[-1])}: datasets {sorted(set(da) ^ set(db))} in one build only"
         for k in da:
