@@ -25,6 +25,8 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
   const PetscInt S = ice.stride, dim = ice.dim;
   PetscReal      beta[kIceMaxMaterials][kIceMaxMaterials], q[kIceMaxMaterials];
   ExchangeMatrix<N> E;
+  PetscBool         info = PETSC_FALSE; // -info: the fallbacks' diagnostics (below) are computed only then
+  PetscCall(PetscInfoEnabled(DM_CLASSID, &info));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -53,7 +55,7 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           const PetscReal u_cm = momentum / mass;
           for (PetscInt m = 0; m < N; ++m) {
             heat[m] += (q[m] - u_old[m]) * (u_cm - 0.5 * (q[m] + u_old[m]));
-            carried[m] += u_cm * (u_old[m] - c[ice.Offset(m, icef::vel + d)]);
+            if (info) carried[m] += u_cm * (u_old[m] - c[ice.Offset(m, icef::vel + d)]);
             c[ice.Offset(m, icef::vel_L + d)] = q[m];
           }
         }
