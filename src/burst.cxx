@@ -74,6 +74,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(ReadLoadCurves(sim));
   PetscCall(ReadGeometries(sim));
   PetscCall(HeatConductionSetUp(sim));
+  PetscCall(PhasesSetUp(sim)); // before the swarm: the heat-up's measurement has fields of its own
   PetscCall(CreateAnalyticSolution(sim));
   PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
   // 3. The gas, on cells of the same grid (null without -ice_materials)
@@ -106,6 +107,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   if (sim.coupling) PetscCall(CouplingSetUp(sim));
   PetscCall(OutputSetUp(sim));
   PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones
+  PetscCall(PhasesCheck(sim));       // the phase the run starts in (a checkpoint's, or the first of -phases)
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -160,8 +162,10 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PetscLogStagePop());
     PetscCall(PetscTime(&t1));
     sim.wall_stepping += t1 - t0;
-    PetscBool stop = PETSC_FALSE;
+    PetscBool stop = PETSC_FALSE, phases_done = PETSC_FALSE;
+    PetscCall(PhasesAfterStep(sim, &phases_done)); // a switch prints, checkpoints and changes the next step
     PetscCall(CheckRunStops(sim, &stop));
+    stop = (PetscBool)(stop || phases_done);
     const bool last = stop || !(sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));

@@ -6,6 +6,7 @@
 #include "io/output.hpp"
 #include "ice/ice_fwd.hpp"
 #include "run_control.hpp"
+#include "phases.hpp"
 #include "mpm/fragments.hpp"
 #include "../models/material.hpp"
 #include <petscdmda.h>
@@ -56,6 +57,9 @@ inline constexpr const char *material        = "material";          // int: mate
 inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
 inline constexpr const char *fragment        = "fragment";          // int: fragment id of intact particles, -1 otherwise
 inline constexpr const char *ambient_pressure = "ambient_pressure"; // Pa: pressure of a surrounding gas less its reference (only with gas)
+inline constexpr const char *surface_heat        = "surface_heat";        // J: heat from the gas over the phases' window (only with -phases)
+inline constexpr const char *surface_temperature_time = "surface_temperature_time"; // K s: integral of T over that window (only with -phases)
+inline constexpr const char *surface_conductance = "surface_conductance"; // W/K: G_p of the surface heat G_p (T_f - T_p) (only with -phases)
 inline constexpr const char *affine          = "affine";            // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
 } // namespace field
 
@@ -161,6 +165,7 @@ struct Simulation {
   PetscBool   help = PETSC_FALSE; // -help: read and list every option, then stop
 
   RunControl  run; // the scene's name, final time, step cap and stops
+  Phases      phases; // heat-up, heat only, mechanics (src/phases.cxx); mechanics alone unless -phases
 
   PetscReal   cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
   StepScheme  scheme = StepScheme::USL;
@@ -282,6 +287,9 @@ PetscErrorCode TaylorFinish(Simulation &sim);
 PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &out);
 PetscErrorCode HeatConductionSetUp(Simulation &sim); // reads -mpm_heat_* and -<mat>_thermal_conductivity/_heat_capacity
 PetscErrorCode ConductHeat(Simulation &sim);         // no-op unless -mpm_heat_conduction
+// Adds G_p (T_source - T_p) to each conducting particle in every conduction sub-step (G_p: the swarm
+// field surface_conductance, W/K), or stops doing so.
+PetscErrorCode HeatSetSurfaceSource(Simulation &sim, PetscBool on, PetscReal source_temperature);
 PetscErrorCode NonlocalAverage(Simulation &sim);     // src/mpm/nonlocal.cxx: no-op unless a material has -MAT_regularization nonlocal
 
 // Fragments (src/fragments.cxx)

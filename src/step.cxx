@@ -19,9 +19,16 @@
 //   P2G(m, mv) -> solids to cells -> equilibration -> burning (gas sources, particle masses) ->
 //   face velocities -> pressure -> pressure to the
 //   particles -> P2G(f, with sigma + (p - p_ref) I) -> grid update -> the solids' nodal velocity to
-//   cells -> gas sources -> cell exchange -> pressure force and exchange back to the nodes -> the
+//   cells -> gas sources -> cell exchange -> surface heat -> pressure force and exchange back to the nodes -> the
 //   gases pay the pressure's work on the solids -> G2P -> exchange heat to the particles -> stress ->
 //   migrate -> heat conduction -> gas advection
+//
+// A run in phases (src/phases.hpp; a container in a fire) takes two more steps before its mechanics:
+//   heatup:    P2G(m, mv) -> nodal velocities (zero: the solids are held still) -> solids to cells
+//              -> equilibration -> face velocities -> pressure -> solids' velocity to cells -> gas
+//              sources -> cell exchange -> surface heat -> increments to the nodes -> exchange heat to the particles
+//              (measured) -> heat conduction -> gas advection; no stress, no MPM time step
+//   heat_only: heat conduction with the measured surface heat; the gas is held
 //
 // Every phase is a named function with its own PetscLogEvent; the two solvers meet only through
 // src/coupling/.
@@ -108,6 +115,7 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceSources(ice));
   PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
+  PetscCall(CouplingSurfaceHeat(sim)); // no-op unless -coupling_surface_heat_transfer
   PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
   PetscCall(CouplingChargePressureWork(sim));
@@ -128,17 +136,67 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// The step size: the smaller of the MPM and gas limits, ending exactly at -final_time.
-static PetscErrorCode StableTimeStep(Simulation &sim)
+// The heat-up: the gas flows around solids held still; they take its heat and conduct it.
+static PetscErrorCode HeatUpStep(Simulation &sim)
+{
+  IceSolver &ice = *sim.ice;
+  PetscFunctionBeginUser;
+  ice.dt = sim.dt;
+  PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(GridVelocityFromMomentum(sim)); // the particles are at rest: every nodal velocity is zero
+  PetscCall(CouplingProjectSolids(sim));
+  PetscCall(IceBudgetStepStart(ice));
+  PetscCall(IceEquilibrate(ice));
+  PetscCall(IceFaceVelocities(ice));
+  PetscCall(IceUpdatePressure(ice));
+  PetscCall(CouplingSolidVelocity(sim));
+  PetscCall(IceSources(ice));
+  PetscCall(IceBudgetFaces(ice));
+  PetscCall(IceCellExchange(ice));
+  PetscCall(CouplingSurfaceHeat(sim)); // no-op unless -coupling_surface_heat_transfer
+  PetscCall(IceBudgetAfterExchange(ice));
+  PetscCall(CouplingIncrementsToNodes(sim)); // the heat increments; no velocity reaches the particles
+  PetscCall(PhasesMeasureHeatBefore(sim));
+  PetscCall(CouplingHeatToParticles(sim));
+  PetscCall(PhasesMeasureHeatAfter(sim));
+  PetscCall(ConductHeat(sim));
+  PetscCall(IceAdvect(ice));
+  PetscCall(IceBudgetOpenFaces(ice));
+  ice.time += sim.dt;
+  ice.step += 1;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// Heat only: the solids conduct under the surface heat measured in the heat-up; the gas is held.
+static PetscErrorCode HeatOnlyStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
+  PetscCall(PetscLogEventBegin(sim.phases.ev_heat_only, 0, 0, 0, 0));
+  PetscCall(ConductHeat(sim));
+  sim.ice->time += sim.dt;
+  PetscCall(PetscLogEventEnd(sim.phases.ev_heat_only, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The step size: the smaller of the MPM and gas limits, ending exactly at -final_time. In the
+// heat-up the gas alone sets it (and the heat-up ends on a step); heat only takes its own.
+static PetscErrorCode StableTimeStep(Simulation &sim)
+{
+  const RunPhase phase = sim.phases.Current();
+  PetscFunctionBeginUser;
   sim.dt = PETSC_MAX_REAL;
-  if (sim.HasParticles()) PetscCall(ComputeTimeStep(sim));
+  if (sim.HasParticles() && phase == RunPhase::Mechanics) PetscCall(ComputeTimeStep(sim));
   if (sim.ice) {
     PetscReal dt_gas;
     PetscCall(IceComputeTimeStep(*sim.ice, &dt_gas));
     sim.dt = PetscMin(sim.dt, PetscMin(dt_gas, sim.dt_max));
     if (sim.dt_fixed > 0) sim.dt = sim.dt_fixed;
+    if (phase == RunPhase::HeatUp) {
+      const Phases   &ph   = sim.phases;
+      const PetscReal left = ph.heatup_end_time - sim.time;
+      sim.dt               = PetscMin(sim.dt, ph.heatup_dt_max);
+      if (left > 0 && (sim.dt > left || left - sim.dt < 1e-6 * sim.dt)) sim.dt = left;
+    } else if (phase == RunPhase::HeatOnly) sim.dt = sim.phases.heat_only_dt;
     PetscCheck(sim.dt > 0 && sim.dt < PETSC_MAX_REAL, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive: a sound speed or velocity is not finite; check the gas materials' equation-of-state options (-<gas>_gamma, -<gas>_cv, ...), their -<gas>_density and -<gas>_temperature, and -ice_cfl / -ice_dt", sim.step, (double)sim.dt);
     const PetscReal remaining = sim.run.final_time - sim.time;
     if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining;
@@ -150,7 +208,9 @@ PetscErrorCode TakeStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscCall(StableTimeStep(sim));
-  if (sim.coupling) PetscCall(CoupledStep(sim));
+  if (sim.phases.Current() == RunPhase::HeatUp) PetscCall(HeatUpStep(sim));
+  else if (sim.phases.Current() == RunPhase::HeatOnly) PetscCall(HeatOnlyStep(sim));
+  else if (sim.coupling) PetscCall(CoupledStep(sim));
   else {
     if (sim.HasParticles()) PetscCall(MPMStep(sim));
     if (sim.ice) PetscCall(ICEStep(*sim.ice, sim.dt));

@@ -61,6 +61,8 @@ public:
   virtual PetscErrorCode MassFlux(const BurnInput &in, PetscReal *mdot, PetscReal *T_surf) const = 0;
   // Heat released per unit burned mass, J/kg.
   virtual PetscReal HeatOfReaction() const = 0;
+  // The temperature its ignition criterion asks of the reactant, K (0: none; src/phases.cxx).
+  virtual PetscReal IgnitionTemperature() const { return 0; }
 
   // Ignites + MassFlux, dm = mdot'' A dt capped at M_s - M_tiny (never negative), Q.
   PetscErrorCode Evaluate(const BurnInput &in, BurnOutput *out) const;

@@ -36,6 +36,7 @@ public:
     return PETSC_SUCCESS;
   }
   PetscReal HeatOfReaction() const override { return Q; }
+  PetscReal IgnitionTemperature() const override { return T_th; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {

@@ -114,6 +114,7 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscReal HeatOfReaction() const override { return Q_c + Q_g; }
+  PetscReal IgnitionTemperature() const override { return T_ign; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {

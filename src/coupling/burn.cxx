@@ -104,6 +104,16 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
 
 PetscReal *CouplingCounters(Simulation &sim) { return sim.coupling->counters; }
 
+PetscErrorCode CouplingIgnition(Simulation &sim, PetscInt material, std::string *model, PetscReal *temperature)
+{
+  PetscFunctionBeginUser;
+  const Coupling &c = *sim.coupling;
+  const PetscInt  s = c.solid_of[material];
+  *model            = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
+  *temperature      = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles)
 {
   PetscFunctionBeginUser;

@@ -45,6 +45,8 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
   PetscOptionsBegin(sim.comm, "", "Gas-solid coupling", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
   PetscCall(CheckRange(sim.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-coupling_surface_heat_transfer", "Convective heat transfer coefficient h between the solids' surfaces and the gas two cells out (W/(m^2 K)), >= 0; 0: off (src/coupling/surface_heat.cxx)", "", c->surface_h, &c->surface_h, nullptr));
+  PetscCall(CheckRange(sim.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
   PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
   c->solid_of.assign(sim.materials.size(), -1);
@@ -131,7 +133,7 @@ struct ParticleKernel {
     PetscInt             n;
     const PetscReal     *x, *hw, *F, *m = nullptr;
     const PetscInt      *mat = nullptr;
-    PetscReal           *out, heat = 0;
+    PetscReal           *out, heat = 0, *received = nullptr;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
     SwarmAccess fields(sim.swarm);
@@ -142,6 +144,7 @@ struct ParticleKernel {
     if (!pressure) {
       PetscCall(fields.Get(field::material, &mat));
       PetscCall(fields.Get(field::mass, &m));
+      if (c.measure_surface_heat) PetscCall(fields.Get(field::surface_heat, &received));
     }
     bool             fill; // the pressure: this step's stencils from P2G(m, mv); the heat: after G2P moved them
     Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
@@ -160,7 +163,9 @@ struct ParticleKernel {
         // back shows in the budget as heat the particles did not receive.
         value = PetscMax(value, -0.5 * out[p]);
         out[p] += value;
-        heat += m[p] * sim.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
+        const PetscReal Q = m[p] * sim.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
+        heat += Q;
+        if (received) received[p] += Q;
       }
     }
     c.counters[kHeatToParticles] += heat;
@@ -411,6 +416,13 @@ PetscErrorCode CouplingHeatToParticles(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode CouplingMeasureSurfaceHeat(Simulation &sim, PetscBool on)
+{
+  PetscFunctionBeginUser;
+  sim.coupling->measure_surface_heat = on;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingSetUp(Simulation &sim)
 {
   Coupling  &c   = *sim.coupling;
@@ -426,6 +438,7 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(PetscLogEventRegister("Cpl_IncrementsToNode", id, &c.ev_increments));
   PetscCall(PetscLogEventRegister("Cpl_HeatToParticles", id, &c.ev_heat));
   PetscCall(PetscLogEventRegister("Cpl_PressureWork", id, &c.ev_work));
+  PetscCall(PetscLogEventRegister("Cpl_SurfaceHeat", id, &c.ev_surface));
   PetscCheck(!sim.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
@@ -458,6 +471,7 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(IceMakeRoomForSolids(ice, fraction));
   PetscCall(CouplingBurnSetUp(sim));
+  PetscCall(CouplingSurfaceHeatSetUp(sim));
   if (c.charge_pressure_work) {
     ice.solid_pressure_dv.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2] * c.nsolid * 3, 0);
     PetscCall(DMDACreateCompatibleDMDA(ice.da, c.nsolid * 3, &c.da_dv));

@@ -29,6 +29,10 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes 
 PetscErrorCode CouplingSolidVelocity(Simulation &sim);       // nodal v* after the MPM update -> cells
 PetscErrorCode CouplingIncrementsToNodes(Simulation &sim);   // pressure force + exchange -> nodes
 PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat -> particles
+PetscErrorCode CouplingSurfaceHeatSetUp(Simulation &sim);    // -coupling_surface_heat_transfer
+PetscErrorCode CouplingSurfaceHeat(Simulation &sim);         // convective heat from the gas to the solids' surfaces (after the cell exchange)
+PetscErrorCode CouplingSurfaceHeatTotal(Simulation &sim, PetscReal *total); // J so far, global
+PetscErrorCode CouplingMeasureSurfaceHeat(Simulation &sim, PetscBool on); // CouplingHeatToParticles adds each particle's heat (J) to its surface_heat field
 PetscErrorCode CouplingChargePressureWork(Simulation &sim);  // the gas pays the work its pressure did on the solids
 // Burning (burn.cxx): the reactants' models and products; the mass, momentum and energy that burn
 // in each cell (after the equilibration); the particles' share of it (right after, at the positions
@@ -36,6 +40,9 @@ PetscErrorCode CouplingChargePressureWork(Simulation &sim);  // the gas pays the
 PetscErrorCode CouplingBurnSetUp(Simulation &sim);
 PetscErrorCode CouplingBurnHelp(Simulation &sim); // -help: list the burning options
 // summary.json: the mass burnt into gas and the burnt-out particles removed (collective).
+// The burn model of solid material `material` (a material id): its name ("none" if inert) and the
+// temperature its ignition criterion asks (K, 0 if none).
+PetscErrorCode CouplingIgnition(Simulation &sim, PetscInt material, std::string *model, PetscReal *temperature);
 PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles);
 PetscErrorCode CouplingBurn(Simulation &sim);
 PetscErrorCode CouplingBurnParticles(Simulation &sim);

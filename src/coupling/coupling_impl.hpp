@@ -46,9 +46,18 @@ struct Coupling {
   DM                                      da_work = nullptr; // nodes: the work of the gas on the solids there
   Vec                                     work_global = nullptr, work_local = nullptr;
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
-  PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0, ev_work = 0;
+  // Convective heat transfer at the solids' surfaces (surface_heat.cxx)
+  PetscReal surface_h    = 0; // W/(m^2 K); 0: off
+  PetscReal surface_heat = 0; // J the solids took from the gas so far (this rank)
+  DM        da_surface   = nullptr; // cells, dof 1: the heat the gases of each cell give
+  Vec       surface_global = nullptr, surface_local = nullptr;
+  PetscBool measure_surface_heat = PETSC_FALSE; // the heat each particle receives is added to its surface_heat field (src/phases.cxx)
+  PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0, ev_work = 0, ev_surface = 0;
   ~Coupling()
   {
+    VecDestroy(&surface_global);
+    VecDestroy(&surface_local);
+    DMDestroy(&da_surface);
     VecDestroy(&mass_global);
     VecDestroy(&mass_local);
     VecDestroy(&inc_global);

@@ -6,7 +6,9 @@
 // gradient), inflow holds the prescribed state of its material (others at their tiny mass).
 // Directions are filled in order x, y, z over the whole ghosted box, so corners are consistent.
 // Boundary faces: wall and symmetry have zero normal velocity, inflow the prescribed one, outflow
-// keeps the computed value. The pressure is zero-gradient on every face (Neumann).
+// keeps the computed value. The pressure is zero-gradient on every face (Neumann), except an outflow
+// face given a far-field pressure (-ice_outflow_<face>_pressure): its ghosts hold that pressure, so
+// the pressure difference drives the flow through the face (and anchors the semi-implicit solve).
 #include "ice.hpp"
 
 namespace burst {
@@ -62,6 +64,9 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
                   cg[ice.Offset(m, icef::vel + d)]   = -cg[ice.Offset(m, icef::vel + d)];
                   cg[ice.Offset(m, icef::vel_L + d)] = -cg[ice.Offset(m, icef::vel_L + d)];
                 }
+              } else if (bc.type == IceBC::Outflow && bc.pressure > 0) {
+                cg[ice.CellOffset(icef::press)]    = bc.pressure;
+                cg[ice.CellOffset(icef::press_eq)] = bc.pressure;
               } else if (bc.type == IceBC::Inflow) {
                 for (PetscInt m = 0; m < ice.nmat; ++m) {
                   const bool      in   = m == bc.material;

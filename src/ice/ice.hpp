@@ -86,6 +86,7 @@ struct IceFaceBC {
   IceBC     type = IceBC::Wall;
   PetscInt  material = 0;           // inflow: the material that flows in
   PetscReal state[5] = {0, 0, 0, 0, 0}; // inflow: density, velocity (3), temperature
+  PetscReal pressure = 0;           // outflow: the far-field pressure its ghost cells hold (Pa); 0: zero gradient
 };
 
 struct IceTotals {

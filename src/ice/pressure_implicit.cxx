@@ -9,7 +9,8 @@
 //             default: setup.cxx says why)
 //   correct   u*_m,f -= dt vbar_m,f (dP_R - dP_L)/dx, then redo the face exchange
 // until max_c |r_c|/V < -ice_outer_tolerance. Domain faces are Neumann (their velocity is set by
-// the boundary condition), so V sum kappa keeps A nonsingular. theta_hat in the matrix is the
+// the boundary condition), so V sum kappa keeps A nonsingular; an outflow face with a far-field
+// pressure is Dirichlet (its ghost holds that pressure: a_f on the diagonal, no neighbour). theta_hat in the matrix is the
 // donor cell's volume fraction; in the residual it comes from the advection operator, as in the
 // explicit path, so the converged pressure is the explicit one's implicit counterpart.
 #include "ice.hpp"
@@ -41,8 +42,9 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, Petsc
         const PetscInt ijk[3] = {i, j, k};
         for (PetscInt d = 0; d < dim; ++d)
           for (int side = -1; side <= 1; side += 2) {
-            const PetscInt nb = ijk[d] + side;
-            if (nb < 0 || nb >= ice.cells[d]) continue; // Neumann domain face
+            const PetscInt nb      = ijk[d] + side;
+            const bool     outside = nb < 0 || nb >= ice.cells[d];
+            if (outside && !(ice.bc[d][side > 0].type == IceBC::Outflow && ice.bc[d][side > 0].pressure > 0)) continue; // Neumann domain face
             const PetscInt face = side < 0 ? idx : idx + ice.lstride[d]; // lower face of the upper cell
             const PetscInt L = face - ice.lstride[d], R = face;
             PetscReal      sum = 0;
@@ -53,6 +55,7 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, Petsc
             }
             const PetscReal coef = (V / ice.h[d]) / ice.h[d] * ice.dt * ice.dt * sum;
             diag += coef;
+            if (outside) continue; // a held far-field pressure: Dirichlet, on the diagonal only
             offsum += std::fabs(coef);
             MatStencil col = row;
             if (d == 0) col.i = nb;

@@ -145,6 +145,7 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   const char *face_opt[3][2]    = {{"-ice_bc_xmin", "-ice_bc_xmax"}, {"-ice_bc_ymin", "-ice_bc_ymax"}, {"-ice_bc_zmin", "-ice_bc_zmax"}};
   const char *inflow_opt[3][2]  = {{"-ice_inflow_xmin", "-ice_inflow_xmax"}, {"-ice_inflow_ymin", "-ice_inflow_ymax"}, {"-ice_inflow_zmin", "-ice_inflow_zmax"}};
   const char *inflow_mat[3][2]  = {{"-ice_inflow_xmin_material", "-ice_inflow_xmax_material"}, {"-ice_inflow_ymin_material", "-ice_inflow_ymax_material"}, {"-ice_inflow_zmin_material", "-ice_inflow_zmax_material"}};
+  const char *outflow_p[3][2]   = {{"-ice_outflow_xmin_pressure", "-ice_outflow_xmax_pressure"}, {"-ice_outflow_ymin_pressure", "-ice_outflow_ymax_pressure"}, {"-ice_outflow_zmin_pressure", "-ice_outflow_zmax_pressure"}};
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) {
       IceFaceBC &bc = ice.bc[d][s];
@@ -164,6 +165,12 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
       }
       PetscCall(PetscOptionsString(inflow_mat[d][s], "Inflow: the gas material that flows in (default: the first)", "", "", buf, sizeof(buf), &set));
       if (set && ice.nmat) PetscCall(MaterialIndex(ice, inflow_mat[d][s], buf, &bc.material));
+      // An open face: the pressure drives the flow through it, and a semi-implicit run keeps its level
+      PetscCall(PetscOptionsReal(outflow_p[d][s], "Outflow: the far-field pressure that the face's ghost cells hold (Pa), >= 0; 0: zero gradient, as the other fields (a semi-implicit run with every face zero-gradient has no pressure level: it drifts)", "", bc.pressure, &bc.pressure, &set));
+      if (set) {
+        PetscCall(CheckRange(ice.comm, outflow_p[d][s], bc.pressure, 0, 1e12, PETSC_FALSE));
+        PetscCheck(bc.type == IceBC::Outflow || bc.pressure == 0, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %s outflow (it is %s)", outflow_p[d][s], face_opt[d][s], IceBCNames[(int)bc.type]);
+      }
     }
 
   // Exchange coefficients (ice.md 1.8): the upper triangle in material order

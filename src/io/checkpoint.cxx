@@ -961,6 +961,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/run"));
   PetscCall(WriteRootValues(sim, viewer, "scalars", Scalars(sim)));
   PetscCall(WriteRootValues(sim, viewer, "rank_values", ranks));
+  if (sim.phases.Enabled()) PetscCall(WriteRootValues(sim, viewer, "phases", PhasesState(sim)));
   std::vector<PetscReal> flat;
   for (const OutputRecord &r : sim.output.records) flat.insert(flat.end(), {(PetscReal)r.step, r.time, (PetscReal)r.particles});
   PetscInt nrec;
@@ -1095,11 +1096,19 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   PetscCall(ReadRootValues(sim, viewer, file, "rank_values", (PetscInt)kNumRankValues * saved_ranks, ranks));
   PetscCall(ReadRootValues(sim, viewer, file, "output_records", 3 * nrec, rec));
   PetscCall(ReadRootValues(sim, viewer, file, "gas_records", 2 * ngas, gas_rec));
+  std::vector<PetscReal> phases;
+  if (sim.phases.Enabled()) {
+    PetscBool has;
+    PetscCall(PetscViewerHDF5HasDataset(viewer, "/run/phases", &has));
+    PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: checkpoint %s was written by a run without phases; restart it without -phases", file.c_str());
+    PetscCall(ReadRootValues(sim, viewer, file, "phases", kPhasesStateSize, phases));
+  }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   if (sim.HasParticles()) PetscCall(ReadParticles(sim, viewer, file, (PetscInt64)s[kTotalParticles], ranks, saved_ranks));
   if (sim.ice) PetscCall(ReadGas(sim, viewer, file));
   PetscCall(PetscViewerDestroy(&viewer));
 
+  if (!phases.empty()) PetscCall(PhasesRestore(sim, phases));
   sim.time                         = s[kTime];
   sim.dt                           = s[kDt];
   sim.step                         = (PetscInt)s[kStep];

@@ -432,6 +432,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscReal  burnt_mass      = 0;
   PetscInt64 burnt_particles = 0;
   if (sim.coupling) PetscCall(CouplingSummary(sim, &burnt_mass, &burnt_particles));
+  PetscReal surface_heat = 0; // J the solids took from the gas by -coupling_surface_heat_transfer
+  if (sim.coupling) PetscCall(CouplingSurfaceHeatTotal(sim, &surface_heat));
   PetscInt64 fallbacks = 0; // cells that fell back to the -p dV energy form
   PetscInt64 fallbacks_remap = 0; // of those, the advection's internal-energy remap
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
@@ -519,7 +521,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"energy_fallbacks_exchange\": " << fallbacks_exchange << ", \"energy_fallbacks_by_class\": {";
     for (int k = 0; k < kIceFallbackClasses; ++k) s << (k ? ", " : "") << "\"" << IceFallbackClassNames[k] << "\": " << fallbacks_class[k];
-    s << "}, \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles;
+    s << "}, \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles << ", \"surface_heat_to_solids\": " << surface_heat;
     s << ", \"cell_steps_per_second_per_core\": " << (sim.wall_stepping > 0 ? cells * sim.step / sim.wall_stepping / sim.size : 0.0) << "},\n";
   }
   if (sim.ice) { // the budgets (ComputeBudget)
@@ -558,6 +560,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     }
     s << "},\n";
   }
+  s << PhasesSummary(sim);
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
   s << "  \"particle_steps_per_second\": " << rate << ",\n";

@@ -177,6 +177,7 @@ static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
     {field::fragment, "fragment", 1, 1, true, false},
   };
   for (const auto &f : ModelFields(sim)) fields.push_back(f);
+  if (sim.phases.Enabled()) fields.push_back({field::surface_conductance, "surface_conductance", 1, 1, false, false});
   return fields;
 }
 

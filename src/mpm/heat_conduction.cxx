@@ -51,6 +51,10 @@ struct HeatConduction {
   PetscReal              face_T[3][2] = {};         // K
   PetscInt               last_substeps = 0;
   PetscLogEvent          event = 0;
+  // A surface heat source per particle, G_p (T_source - T_p) with G_p the swarm field
+  // surface_conductance (W/K; src/phases.cxx measures it from the gas): added in every sub-step
+  PetscBool              surface_source = PETSC_FALSE;
+  PetscReal              source_temperature = 0; // K
   ~HeatConduction()
   {
     (void)VecDestroy(&global);
@@ -153,6 +157,8 @@ struct HeatKernel {
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::material, &mat));
     PetscCall(fields.Get(field::temperature, &T));
+    const PetscReal *G = nullptr;
+    if (what == 2 && heat.surface_source) PetscCall(fields.Get(field::surface_conductance, &G));
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       const PetscReal kp = heat.k[mat[p]], cp = heat.c[mat[p]];
@@ -188,6 +194,7 @@ struct HeatKernel {
           (void)dN;
           rate += N * in[3 * index(i, j, k) + 2];
         });
+        if (G) rate += G[p] * (heat.source_temperature - T[p]) / (m[p] * cp);
         T[p] += dt * rate;
       }
     }
@@ -361,6 +368,15 @@ PetscErrorCode ConductHeat(Simulation &sim)
     PetscCall(CheckTemperatures(sim, heat, which));
   }
   PetscCall(PetscLogEventEnd(heat.event, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode HeatSetSurfaceSource(Simulation &sim, PetscBool on, PetscReal source_temperature)
+{
+  PetscFunctionBeginUser;
+  PetscCheck(sim.heat, sim.comm, PETSC_ERR_USER_INPUT, "A surface heat source needs -mpm_heat_conduction");
+  sim.heat->surface_source     = on;
+  sim.heat->source_temperature = source_temperature;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,0 +1,347 @@
+// The phases of a run: options, the heat-up's measurement of the surface heat, the switches
+// (src/phases.hpp says what each phase does and why).
+#include "phases.hpp"
+#include "simulation.hpp"
+#include "coupling/coupling.hpp"
+#include "ice/ice.hpp"
+#include "io/checkpoint.hpp"
+#include "mpm/swarm_access.hpp"
+#include "util.hpp"
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+namespace burst {
+
+namespace {
+const char *const kPhaseChoices = "heatup, heat_only, mechanics";
+
+bool Has(const Phases &ph, RunPhase p)
+{
+  for (RunPhase q : ph.order)
+    if (q == p) return true;
+  return false;
+}
+
+// -phases: names in the order heatup, heat_only, mechanics, each at most once.
+PetscErrorCode ParsePhases(MPI_Comm comm, const std::string &text, std::vector<RunPhase> &order)
+{
+  PetscFunctionBeginUser;
+  order.clear();
+  std::stringstream words(text);
+  std::string       word;
+  while (std::getline(words, word, ',')) {
+    RunPhase p;
+    if (word == "heatup") p = RunPhase::HeatUp;
+    else if (word == "heat_only") p = RunPhase::HeatOnly;
+    else if (word == "mechanics") p = RunPhase::Mechanics;
+    else SETERRQ(comm, PETSC_ERR_USER_INPUT, "Option -phases: unknown phase '%s'; valid choices: %s (a comma-separated list in that order)", word.c_str(), kPhaseChoices);
+    PetscCheck(order.empty() || (int)p > (int)order.back(), comm, PETSC_ERR_USER_INPUT, "Option -phases %s: the phases must come in the order %s, each at most once", text.c_str(), kPhaseChoices);
+    order.push_back(p);
+  }
+  PetscCheck(!order.empty(), comm, PETSC_ERR_USER_INPUT, "Option -phases is empty; valid choices: %s (a comma-separated list in that order)", kPhaseChoices);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The hottest particle of material `material` (global): its temperature, id and position.
+PetscErrorCode HottestParticle(Simulation &sim, PetscInt material, PetscReal *T_max, PetscInt64 *id, PetscReal x[3])
+{
+  PetscInt          n;
+  const PetscReal  *T, *coor;
+  const PetscInt   *mat;
+  const PetscInt64 *pid;
+  const PetscInt    dim = sim.grid.dim;
+  struct {
+    PetscReal value;
+    PetscMPIInt rank;
+  } local = {-1, sim.rank}, global;
+  PetscInt best = -1;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::material, &mat));
+  PetscCall(fields.Get(DMSwarmPICField_coor, &coor));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  for (PetscInt p = 0; p < n; ++p)
+    if (mat[p] == material && T[p] > local.value) {
+      local.value = T[p];
+      best        = p;
+    }
+  static_assert(sizeof(PetscReal) == sizeof(double), "MPI_DOUBLE_INT below");
+  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscReal  where[4] = {0, 0, 0, 0};
+  if (sim.rank == global.rank && best >= 0) {
+    for (PetscInt d = 0; d < dim; ++d) where[d] = coor[best * dim + d];
+    where[3] = (PetscReal)pid[best];
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Bcast(where, 4, MPIU_REAL, global.rank, sim.comm));
+  *T_max = global.value;
+  *id    = (PetscInt64)where[3];
+  for (int d = 0; d < 3; ++d) x[d] = where[d];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The hottest gas (a gas filling at least half of its cell), K: the flame's temperature.
+PetscErrorCode HottestGas(Simulation &sim, PetscReal *T_max)
+{
+  IceSolver   &ice = *sim.ice;
+  PetscScalar *a;
+  PetscReal    local = 0;
+  PetscFunctionBeginUser;
+  PetscCall(IceGetLocalArray(ice, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
+        const PetscScalar *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
+        for (PetscInt g = 0; g < ice.ngas; ++g)
+          if (cell[ice.Offset(g, icef::theta)] >= 0.5) local = PetscMax(local, cell[ice.Offset(g, icef::temp)]);
+      }
+  PetscCall(IceRestoreLocalArray(ice, &a));
+  PetscCallMPI(MPI_Allreduce(&local, T_max, 1, MPIU_REAL, MPI_MAX, sim.comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// What the current phase's step needs of the gas, the coupling and the conduction.
+PetscErrorCode ApplyPhase(Simulation &sim)
+{
+  Phases        &ph = sim.phases;
+  const RunPhase p  = ph.Current();
+  PetscFunctionBeginUser;
+  sim.ice->sound_speed_knob = p == RunPhase::HeatUp ? ph.heatup_sound_speed_knob : ph.mechanics_sound_speed_knob;
+  PetscCall(CouplingMeasureSurfaceHeat(sim, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
+  if (sim.heat) PetscCall(HeatSetSurfaceSource(sim, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The end of the heat-up's window: each particle's conductance G_p = Q_p / (T_f W - integral T_p dt)
+// (zero where the gas gave no heat: inside the solids and on faces the fire does not reach), and the
+// surface heat rate sum_p G_p (T_f - T_p) now.
+PetscErrorCode FinishMeasurement(Simulation &sim)
+{
+  Phases          &ph = sim.phases;
+  PetscInt         n;
+  const PetscReal *Q, *Tt, *T;
+  PetscReal       *G;
+  PetscReal        sums[2] = {0, 0}, global[2]; // [rate now, heat received over the window]
+  PetscFunctionBeginUser;
+  PetscCheck(ph.window_length > 0, sim.comm, PETSC_ERR_USER_INPUT, "Phases: the heat-up ended at t = %g s before its measurement window began (-phase_flux_window %g s, -phase_heatup_end_time %g s)", (double)sim.time, (double)ph.flux_window, (double)ph.heatup_end_time);
+  if (ph.flame_temperature <= 0) PetscCall(HottestGas(sim, &ph.flame_temperature));
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::surface_heat, &Q));
+  PetscCall(fields.Get(field::surface_temperature_time, &Tt));
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::surface_conductance, &G));
+  const PetscReal Tf = ph.flame_temperature, W = ph.window_length;
+  for (PetscInt p = 0; p < n; ++p) {
+    const PetscReal driving = Tf * W - Tt[p]; // integral of (T_f - T_p) dt, K s
+    G[p]                    = Q[p] > 0 && driving > 0 ? Q[p] / driving : 0;
+    sums[0] += G[p] * (Tf - T[p]);
+    sums[1] += Q[p];
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(sums, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
+  ph.surface_heat_rate = global[0];
+  PetscCall(PetscPrintf(sim.comm, "  surface heat measured over [%g, %g] s: %g J from the gas, %g W now (flame temperature %g K%s)\n", (double)ph.window_start, (double)(ph.window_start + W), (double)global[1], (double)global[0], (double)Tf, sim.grid.dim == 2 ? "; per metre of depth" : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode SwitchTo(Simulation &sim, RunPhase to, const std::string &why)
+{
+  Phases        &ph   = sim.phases;
+  const RunPhase from = ph.Current();
+  PetscFunctionBeginUser;
+  PetscCall(PetscPrintf(sim.comm, "Phase %s -> %s at step %" PetscInt_FMT ", t = %g s: %s\n", RunPhaseName(from), RunPhaseName(to), sim.step, (double)sim.time, why.c_str()));
+  if (from == RunPhase::HeatUp) PetscCall(FinishMeasurement(sim));
+  while (ph.Current() != to) ph.current += 1;
+  ph.switch_time[(int)to] = sim.time;
+  PetscCall(ApplyPhase(sim));
+  if (ph.write_checkpoint) PetscCall(CheckpointWrite(sim));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+} // namespace
+
+PetscErrorCode PhasesSetUp(Simulation &sim)
+{
+  Phases   &ph = sim.phases;
+  char      text[256] = "mechanics", ignition[256] = "";
+  PetscBool set = PETSC_FALSE, has_window = PETSC_FALSE, has_material = PETSC_FALSE;
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(sim.comm, "", "Run phases: a container in a fire (src/phases.hpp)", "Phases");
+  PetscCall(PetscOptionsString("-phases", "The run's phases, a comma-separated list in the order heatup,heat_only,mechanics (heatup: gas around solids held still; heat_only: conduction under the measured surface heat; mechanics: the full step)", "", text, text, sizeof(text), &set));
+  PetscCall(PetscOptionsReal("-phase_heatup_end_time", "heatup: the time at which it ends (s), > 0", "", ph.heatup_end_time, &ph.heatup_end_time, nullptr));
+  PetscCall(PetscOptionsReal("-phase_flux_window", "heatup: the surface heat is measured over this last part of it (s), in (0, -phase_heatup_end_time]; default: its last fifth", "", ph.flux_window, &ph.flux_window, &has_window));
+  PetscCall(PetscOptionsReal("-phase_heatup_sound_speed_knob", "heatup: k of the gas CFL, in [0, 1] (0: the flow's speed alone sets the step, as the reference's heat-up)", "", ph.heatup_sound_speed_knob, &ph.heatup_sound_speed_knob, nullptr));
+  PetscCall(PetscOptionsReal("-phase_heatup_dt_max", "heatup: the largest time step (s), > 0", "", ph.heatup_dt_max, &ph.heatup_dt_max, nullptr));
+  PetscCall(PetscOptionsReal("-phase_heat_only_dt", "heat_only: the time step (s), > 0 (conduction sub-steps within it as -mpm_heat_cfl asks)", "", ph.heat_only_dt, &ph.heat_only_dt, nullptr));
+  PetscCall(PetscOptionsReal("-phase_flame_temperature", "T_f of the surface heat G_p (T_f - T_p) (K), >= 0; 0: the hottest gas at the end of the heat-up", "", ph.flame_temperature, &ph.flame_temperature, nullptr));
+  PetscCall(PetscOptionsReal("-phase_ignition_temperature", "The run goes to mechanics once a particle of the ignition material is this hot (K), >= 0; 0: its burn model's ignition temperature", "", ph.ignition_temperature, &ph.ignition_temperature, nullptr));
+  PetscCall(PetscOptionsString("-phase_ignition_material", "The solid whose temperature decides ignition; default: the one with a burn model (-<material>_burn_type)", "", ignition, ignition, sizeof(ignition), &has_material));
+  PetscCall(PetscOptionsBool("-phase_checkpoint", "Write a checkpoint at each phase switch", "", ph.write_checkpoint, &ph.write_checkpoint, nullptr));
+  PetscOptionsEnd();
+  if (sim.help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(ParsePhases(sim.comm, text, ph.order));
+  PetscCall(CheckRange(sim.comm, "-phase_heatup_end_time", ph.heatup_end_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  if (!has_window) ph.flux_window = 0.2 * ph.heatup_end_time;
+  PetscCall(CheckRange(sim.comm, "-phase_flux_window", ph.flux_window, 0, ph.heatup_end_time, PETSC_TRUE));
+  PetscCheck(ph.flux_window <= ph.heatup_end_time, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_flux_window = %g s is out of range: it must be in (0, -phase_heatup_end_time = %g s]", (double)ph.flux_window, (double)ph.heatup_end_time);
+  PetscCall(CheckRange(sim.comm, "-phase_heatup_sound_speed_knob", ph.heatup_sound_speed_knob, 0, 1, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-phase_heatup_dt_max", ph.heatup_dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(sim.comm, "-phase_heat_only_dt", ph.heat_only_dt, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(sim.comm, "-phase_flame_temperature", ph.flame_temperature, 0, 1e6, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-phase_ignition_temperature", ph.ignition_temperature, 0, 1e6, PETSC_FALSE));
+  if (has_material) {
+    std::string names;
+    for (size_t m = 0; m < sim.materials.size(); ++m) {
+      names += (m ? ", " : "") + std::string(sim.materials[m]->Name());
+      if (!std::strcmp(sim.materials[m]->Name(), ignition)) ph.ignition_material = (PetscInt)m;
+    }
+    PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material %s is not a solid material; valid choices (-materials): %s", ignition, names.c_str());
+  }
+  if (ph.Enabled()) {
+    PetscClassId id;
+    PetscCall(PetscClassIdRegister("Phases", &id));
+    PetscCall(PetscLogEventRegister("Phase_Measure", id, &ph.ev_measure));
+    PetscCall(PetscLogEventRegister("Phase_HeatOnly", id, &ph.ev_heat_only));
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PhasesCheck(Simulation &sim)
+{
+  Phases &ph = sim.phases;
+  PetscFunctionBeginUser;
+  if (!ph.Enabled()) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(sim.coupling, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: phases other than mechanics need solids and gas (-materials and -ice_materials)");
+  PetscCheck(!Has(ph, RunPhase::HeatOnly) || sim.heat, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases heat_only needs heat conduction in the solids (-mpm_heat_conduction)");
+  PetscCheck(!Has(ph, RunPhase::HeatOnly) || Has(ph, RunPhase::HeatUp), sim.comm, PETSC_ERR_USER_INPUT, "Option -phases heat_only needs heatup before it (the surface heat is measured there)");
+  std::string model;
+  PetscReal   T_model = 0;
+  if (ph.ignition_material < 0) {
+    std::string burning;
+    for (size_t m = 0; m < sim.materials.size(); ++m) {
+      PetscCall(CouplingIgnition(sim, (PetscInt)m, &model, &T_model));
+      if (model == "none") continue;
+      PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.materials[ph.ignition_material]->Name(), sim.materials[m]->Name());
+      ph.ignition_material = (PetscInt)m;
+    }
+    PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: no solid burns (-<material>_burn_type); give -phase_ignition_material and -phase_ignition_temperature");
+  }
+  PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
+  if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
+  PetscCheck(ph.ignition_temperature > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.materials[ph.ignition_material]->Name(), model.c_str());
+  ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
+  if (ph.switch_time[(int)ph.order[0]] < 0) ph.switch_time[(int)ph.order[0]] = sim.time;
+  PetscCall(ApplyPhase(sim));
+  std::string list;
+  for (RunPhase p : ph.order) list += (list.empty() ? "" : " -> ") + std::string(RunPhaseName(p));
+  PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PhasesMeasureHeatBefore(Simulation &sim)
+{
+  Phases &ph = sim.phases;
+  PetscFunctionBeginUser;
+  if (ph.window_start >= 0 || sim.time < (ph.heatup_end_time - ph.flux_window) * (1 - 1e-12)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscInt   n;
+  PetscReal *Q, *Tt;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::surface_heat, &Q));
+  PetscCall(fields.Get(field::surface_temperature_time, &Tt));
+  for (PetscInt p = 0; p < n; ++p) Q[p] = Tt[p] = 0;
+  PetscCall(fields.RestoreAll());
+  ph.window_start  = sim.time;
+  ph.window_length = 0;
+  PetscCall(CouplingMeasureSurfaceHeat(sim, PETSC_TRUE));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PhasesMeasureHeatAfter(Simulation &sim)
+{
+  Phases &ph = sim.phases;
+  PetscFunctionBeginUser;
+  if (ph.window_start < 0) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(PetscLogEventBegin(ph.ev_measure, 0, 0, 0, 0));
+  PetscInt         n;
+  const PetscReal *T;
+  PetscReal       *Tt;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::surface_temperature_time, &Tt));
+  for (PetscInt p = 0; p < n; ++p) Tt[p] += T[p] * sim.dt;
+  PetscCall(fields.RestoreAll());
+  ph.window_length += sim.dt;
+  PetscCall(PetscLogEventEnd(ph.ev_measure, 0, 0, 0, 0));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
+{
+  Phases &ph = sim.phases;
+  PetscFunctionBeginUser;
+  *stop = PETSC_FALSE;
+  if (!ph.Enabled() || ph.Current() == RunPhase::Mechanics) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscReal  x[3] = {0, 0, 0};
+  PetscInt64 id    = -1;
+  PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id, x));
+  if (ph.hottest_ignition >= ph.ignition_temperature) {
+    char why[512];
+    std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
+    if (Has(ph, RunPhase::Mechanics)) PetscCall(SwitchTo(sim, RunPhase::Mechanics, why));
+    else {
+      PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s (-phases has no mechanics)\n", sim.step, (double)sim.time, why));
+      ph.switch_time[(int)RunPhase::Mechanics] = sim.time; // the ignition time, for the summary
+      *stop = PETSC_TRUE;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  if (ph.Current() == RunPhase::HeatUp && sim.time >= ph.heatup_end_time * (1 - 1e-12)) {
+    if (ph.current + 1 < ph.order.size()) PetscCall(SwitchTo(sim, ph.order[ph.current + 1], "the heat-up's end time (-phase_heatup_end_time)"));
+    else {
+      PetscCall(FinishMeasurement(sim));
+      PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: the heat-up's end time, the last of -phases\n", sim.step, (double)sim.time));
+      *stop = PETSC_TRUE;
+    }
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+std::string PhasesSummary(const Simulation &sim)
+{
+  const Phases &ph = sim.phases;
+  if (!ph.Enabled()) return "";
+  char buf[1024];
+  std::snprintf(buf, sizeof(buf), "  \"phases\": {\"current\": \"%s\", \"heatup_start\": %.12g, \"heat_only_start\": %.12g, \"mechanics_start\": %.12g, \"flux_window\": [%.12g, %.12g], \"flame_temperature\": %.12g, \"surface_heat_rate\": %.12g, \"ignition_material\": \"%s\", \"ignition_temperature\": %.12g, \"hottest_ignition_material\": %.12g},\n",
+                RunPhaseName(ph.Current()), (double)ph.switch_time[0], (double)ph.switch_time[1], (double)ph.switch_time[2], (double)ph.window_start, (double)(ph.window_start + ph.window_length), (double)ph.flame_temperature, (double)ph.surface_heat_rate, ph.ignition_material >= 0 ? sim.materials[ph.ignition_material]->Name() : "", (double)ph.ignition_temperature, (double)ph.hottest_ignition);
+  return buf;
+}
+
+std::vector<PetscReal> PhasesState(const Simulation &sim)
+{
+  const Phases &ph = sim.phases;
+  return {(PetscReal)(int)ph.Current(), ph.window_start, ph.window_length, ph.switch_time[0], ph.switch_time[1], ph.switch_time[2], ph.surface_heat_rate, ph.flame_temperature, ph.hottest_ignition};
+}
+
+PetscErrorCode PhasesRestore(Simulation &sim, const std::vector<PetscReal> &s)
+{
+  Phases &ph = sim.phases;
+  PetscFunctionBeginUser;
+  PetscCheck((PetscInt)s.size() == kPhasesStateSize, sim.comm, PETSC_ERR_FILE_UNEXPECTED, "Checkpoint: the phases record has %d values, expected %d", (int)s.size(), (int)kPhasesStateSize);
+  const RunPhase saved = (RunPhase)(int)s[0];
+  PetscCheck(Has(ph, saved), sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: the checkpoint was written in phase %s, which this run's -phases does not list", RunPhaseName(saved));
+  ph.current = 0;
+  while (ph.Current() != saved) ph.current += 1;
+  ph.window_start = s[1], ph.window_length = s[2];
+  for (int k = 0; k < 3; ++k) ph.switch_time[k] = s[3 + k];
+  ph.surface_heat_rate = s[6];
+  if (saved != RunPhase::HeatUp) ph.flame_temperature = s[7]; // the conductances were measured against it
+  ph.hottest_ignition = s[8];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst
