@@ -8,8 +8,10 @@
 // do_convective_heat_transfer: a solid surface cell exchanges heat with the gas one cell outward).
 //
 // Here, per cell c holding solid (theta_s = sum of the solids' volume fractions):
-//   the surface in the cell   A_c = V |grad theta_s|    (central differences; in 2-D per metre)
-//   the outward normal        n = -grad theta_s / |grad theta_s|
+//   the surface in the cell   A_c = V |g|, g_d = the drops of theta_s to the lower neighbours along d
+//                             over h_d (a monotone profile telescopes: the surfaces sum to the
+//                             outline; a trace of solid beside a body takes none; in 2-D per metre)
+//   the outward normal        n = -grad theta_s / |grad theta_s| (central differences)
 //   the gas it faces          the cell two cells out along n (c + round(2 n)), its gases' M c_v-weighted
 //                             Lagrangian temperature T_g
 //   the heat                  Q_c = h A_c (T_g - T_s,c) dt, capped at half of what would equalise
@@ -64,20 +66,27 @@ PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
         const PetscReal theta = solid_fraction(cell);
         if (!(theta > 0)) continue;
         const PetscInt ijk[3] = {i, j, k};
-        PetscReal      grad[3] = {0, 0, 0}, norm = 0;
-        for (PetscInt d = 0; d < dim; ++d) { // central differences; one-sided at a domain face
+        PetscReal      grad[3] = {0, 0, 0}, drop[3] = {0, 0, 0}, norm = 0;
+        for (PetscInt d = 0; d < dim; ++d) {
+          // the direction from central differences (one-sided at a domain face); the size from the
+          // drops to lower neighbours, so the surface sums to the body's outline (a 1-D profile
+          // telescopes) and a cell with a mere trace of solid beside a body takes none of it
           const bool lo = ijk[d] > 0, hi = ijk[d] < ice.cells[d] - 1;
           const PetscReal up = hi ? solid_fraction(a + (idx + ice.lstride[d]) * S) : theta;
           const PetscReal dn = lo ? solid_fraction(a + (idx - ice.lstride[d]) * S) : theta;
           grad[d]            = (up - dn) / (((lo ? 1 : 0) + (hi ? 1 : 0)) * ice.h[d]);
-          norm += grad[d] * grad[d];
+          drop[d]            = (PetscMax(0, theta - up) + PetscMax(0, theta - dn)) / ice.h[d];
+          norm += drop[d] * drop[d];
         }
         norm = std::sqrt(norm);
-        if (!(norm > 0)) continue;
+        PetscReal gnorm = 0;
+        for (PetscInt d = 0; d < dim; ++d) gnorm += grad[d] * grad[d];
+        gnorm = std::sqrt(gnorm);
+        if (!(norm > 0 && gnorm > 0)) continue;
         PetscInt far[3] = {i, j, k};
         bool     inside = true;
         for (PetscInt d = 0; d < dim; ++d) {
-          far[d] += (PetscInt)std::lround(-2 * grad[d] / norm);
+          far[d] += (PetscInt)std::lround(-2 * grad[d] / gnorm);
           inside = inside && far[d] >= 0 && far[d] < ice.cells[d];
         }
         if (!inside) continue;
