@@ -95,6 +95,28 @@ void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, con
       }
 }
 
+// An inflow face's first ghost layer, the donor of what flows in, holds the prescribed state of its
+// face cell (boundary.cxx): its reconstruction is flat, so the face carries that state exactly
+// (rho u A dt of the jet or the coflow, cell by cell). A uniform inflow's limiter flattens it anyway
+// (the outer ghost equals it); along a jet's edge it would not.
+void FlattenInflowGhosts(const IceSolver &ice, PetscReal *grad)
+{
+  PetscInt lo[3], hi[3];
+  DonorBox(ice, lo, hi);
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      const bool touches = s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d];
+      if (!touches || ice.bc[d][s].type != IceBC::Inflow) continue;
+      PetscInt flo[3] = {lo[0], lo[1], lo[2]}, fhi[3] = {hi[0], hi[1], hi[2]};
+      flo[d] = s == 0 ? -1 : ice.cells[d];
+      fhi[d] = flo[d] + 1;
+      for (PetscInt k = flo[2]; k < fhi[2]; ++k)
+        for (PetscInt j = flo[1]; j < fhi[1]; ++j)
+          for (PetscInt i = flo[0]; i < fhi[0]; ++i)
+            for (PetscInt e = 0; e < 3; ++e) grad[3 * ice.LocalIndex(i, j, k) + e] = 0;
+    }
+}
+
 // The dimension and the number of advected quantities are compile-time constants so that the
 // per-face loops over them unroll (IceAdvectionIncrement dispatches).
 template <int DIM, int NQ>
@@ -116,6 +138,8 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
       if (ice.compatible_fluxes) CompatibleGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
       else LimitedGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
     }
+    FlattenInflowGhosts(ice, grad_rho);
+    for (PetscInt q = 0; q < nq; ++q) FlattenInflowGhosts(ice, grad_q(q));
   }
   // Out-flux distance of face (d, side) of cell idx for material m
   auto out_distance = [&](PetscInt idx, PetscInt d, int side) {
@@ -176,8 +200,10 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
             if (R_owned) acc[(size_t)q * nlocal + R] += F;
             if (L_owned) acc[(size_t)q * nlocal + L] -= F;
           }
-          if (ice.boundary_flux_sink && (ijk[d] == 0 || ijk[d] == ice.cells[d])) // a domain face: the same fluxes, out positive, for the budgets (diagnostics.cxx)
+          if (ice.boundary_flux_sink && (ijk[d] == 0 || ijk[d] == ice.cells[d])) { // a domain face: the same fluxes, out positive, for the budgets (diagnostics.cxx)
             for (PetscInt q = 0; q <= nq; ++q) ice.boundary_flux_sink[q] += (ijk[d] == 0 ? -sign : sign) * volume * values[q];
+            ice.boundary_face_mass_flux[2 * d + (ijk[d] == 0 ? 0 : 1)] += (ijk[d] == 0 ? -sign : sign) * volume * values[0];
+          }
         }
   }
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)

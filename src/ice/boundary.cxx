@@ -3,7 +3,8 @@
 // Two layers of ghost cells. Inter-rank ghosts come from the DMDA; ghosts outside the domain are
 // filled per face: wall and symmetry mirror the interior with the normal velocity negated (the
 // gas is inviscid, so a wall is a free-slip reflector), outflow copies the boundary cell (zero
-// gradient), inflow holds the prescribed state of its material (others at their tiny mass).
+// gradient), inflow holds the prescribed state of its material (others at their tiny mass), per
+// cell of the face: a jet's state where the cell is within its radius (IceInflowAt).
 // Directions are filled in order x, y, z over the whole ghosted box, so corners are consistent.
 // Boundary faces: wall and symmetry have zero normal velocity, inflow the prescribed one, outflow
 // keeps the computed value. The pressure is zero-gradient on every face (Neumann), except an outflow
@@ -68,15 +69,16 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
                 cg[ice.CellOffset(icef::press)]    = bc.pressure;
                 cg[ice.CellOffset(icef::press_eq)] = bc.pressure;
               } else if (bc.type == IceBC::Inflow) {
+                const IceInflowState &in_state = IceInflowAt(ice, d, s, i, j, k); // the jet's or the face's
                 for (PetscInt m = 0; m < ice.nmat; ++m) {
-                  const bool      in   = m == bc.material;
-                  const PetscReal rho0 = in ? bc.state[0] : 1 / cf[ice.Offset(m, icef::spvol)];
-                  const PetscReal rho  = in ? bc.state[0] : ice.rho_tiny * rho0;
-                  const PetscReal T    = in ? bc.state[4] : cf[ice.Offset(m, icef::temp)];
+                  const bool      in   = m == in_state.material;
+                  const PetscReal rho0 = in ? in_state.state[0] : 1 / cf[ice.Offset(m, icef::spvol)];
+                  const PetscReal rho  = in ? in_state.state[0] : ice.rho_tiny * rho0;
+                  const PetscReal T    = in ? in_state.state[4] : cf[ice.Offset(m, icef::temp)];
                   for (int fset = 0; fset < 2; ++fset) { // state and Lagrangian copies
                     cg[ice.Offset(m, fset ? icef::rho_L : icef::rho)]     = rho;
                     cg[ice.Offset(m, fset ? icef::temp_L : icef::temp)]   = T;
-                    for (PetscInt c = 0; c < 3; ++c) cg[ice.Offset(m, (fset ? icef::vel_L : icef::vel) + c)] = bc.state[1 + c];
+                    for (PetscInt c = 0; c < 3; ++c) cg[ice.Offset(m, (fset ? icef::vel_L : icef::vel) + c)] = in_state.state[1 + c];
                   }
                   cg[ice.Offset(m, icef::spvol)] = 1 / rho0;
                   cg[ice.Offset(m, icef::energy_L)] = T; // (kinetic part set by the advection)
@@ -123,8 +125,7 @@ void IceBoundaryFaceVelocities(IceSolver &ice)
       const bool touches = s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d];
       const IceFaceBC &bc = ice.bc[d][s];
       if (!touches || bc.type == IceBC::Outflow) continue;
-      const PetscReal value = bc.type == IceBC::Inflow ? bc.state[1 + d] : 0;
-      PetscInt        lo[3], hi[3];
+      PetscInt lo[3], hi[3];
       for (PetscInt e = 0; e < 3; ++e) {
         lo[e] = ice.gxs[e];
         hi[e] = ice.gxs[e] + ice.gxm[e];
@@ -134,7 +135,8 @@ void IceBoundaryFaceVelocities(IceSolver &ice)
       for (PetscInt k = lo[2]; k < hi[2]; ++k)
         for (PetscInt j = lo[1]; j < hi[1]; ++j)
           for (PetscInt i = lo[0]; i < hi[0]; ++i) {
-            const PetscInt idx = ice.LocalIndex(i, j, k);
+            const PetscInt  idx   = ice.LocalIndex(i, j, k);
+            const PetscReal value = bc.type == IceBC::Inflow ? IceInflowAt(ice, d, s, i, j, k).state[1 + d] : 0; // (the jet's or the face's)
             for (PetscInt m = 0; m < ice.nmat; ++m) {
               ice.face_vel[d][idx * ice.nmat + m]      = value;
               ice.face_vel_star[d][idx * ice.nmat + m] = value;

@@ -228,6 +228,11 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
     out += V * ice.materials[m].eos->cv * f[1 + ice.dim];
     for (int q = 0; q < kIceBoundaryFluxes; ++q) f[q] = 0;
   }
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      ice.boundary.face_mass[d][s] += V * ice.boundary_face_mass_flux[2 * d + s];
+      ice.boundary_face_mass_flux[2 * d + s] = 0;
+    }
   ice.boundary.energy += out;
   // what the advection did not conserve: the total energy M (c_v T + e_cold + |u|^2/2) after it (as
   // IceComputeTotals), plus what left, less the Lagrangian one it advected (the L fields are still

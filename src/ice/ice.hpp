@@ -82,11 +82,23 @@ inline constexpr int sum_kappa = 3; // sum_m theta_m kappa_m, 1/Pa
 inline constexpr int kCellFields = 4;
 } // namespace icef
 
+// The state an inflow face prescribes in one of its cells.
+struct IceInflowState {
+  PetscInt  material = 0;               // the material that flows in (the others at their tiny mass)
+  PetscReal state[5] = {0, 0, 0, 0, 0}; // density (kg/m^3), velocity (3, m/s), temperature (K)
+};
+
+// An inflow face holds `inflow` in every cell, or with a jet (-ice_inflow_<face>_jet) `jet` in the
+// face cells whose centre lies within jet_radius of jet_center along the face (a slot of half-width
+// jet_radius in 2-D, a disc in 3-D) and `inflow` (the coflow) in the others: IceInflowAt.
 struct IceFaceBC {
-  IceBC     type = IceBC::Wall;
-  PetscInt  material = 0;           // inflow: the material that flows in
-  PetscReal state[5] = {0, 0, 0, 0, 0}; // inflow: density, velocity (3), temperature
-  PetscReal pressure = 0;           // outflow: the far-field pressure its ghost cells hold (Pa); 0: zero gradient
+  IceBC          type = IceBC::Wall;
+  IceInflowState inflow;
+  bool           has_jet = false;
+  IceInflowState jet;
+  PetscReal      jet_center[3] = {0, 0, 0}; // m; the component normal to the face is not used
+  PetscReal      jet_radius    = 0;         // m
+  PetscReal      pressure      = 0;         // outflow: the far-field pressure its ghost cells hold (Pa); 0: zero gradient
 };
 
 struct IceTotals {
@@ -104,6 +116,7 @@ struct IceBoundaryBudget {
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0; // kg, kg m/s, J
   PetscReal work = 0;                                       // J
   PetscReal impulse[3] = {0, 0, 0};                         // N s
+  PetscReal face_mass[3][2] = {{0, 0}, {0, 0}, {0, 0}};     // kg: of `mass`, each face's (xmin, xmax, ymin, ...)
 };
 // Values per material that the advection's face loop adds for the domain faces: the flux of the
 // density and of the nq advected quantities (at most dim + 3: velocity, energy, the dual-energy
@@ -224,6 +237,9 @@ struct IceSolver {
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
   PetscReal *boundary_flux_sink = nullptr;
   PetscReal  boundary_flux[kIceMaxMaterials][kIceBoundaryFluxes] = {};
+  // The gases' density flux of each domain face (index 2 d + side, out positive, per unit cell
+  // volume) that the same loop adds while boundary_flux_sink is set: the budget per face.
+  PetscReal  boundary_face_mass_flux[6] = {};
 
   PetscLogEvent ev_equilibrate, ev_face, ev_pressure, ev_sources, ev_exchange, ev_advect, ev_bc, ev_dt, ev_budget;
 
@@ -233,6 +249,23 @@ struct IceSolver {
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
   ~IceSolver();
 };
+
+// The inflow state of face (d, s) in the cell (i, j, k) of the face's layer (a ghost or a domain
+// cell; only the indices along the face matter): the jet's where the cell centre is within the jet's
+// radius of its centre, else the face's own (IceFaceBC).
+inline const IceInflowState &IceInflowAt(const IceSolver &ice, PetscInt d, int s, PetscInt i, PetscInt j, PetscInt k)
+{
+  const IceFaceBC &bc = ice.bc[d][s];
+  if (!bc.has_jet) return bc.inflow;
+  const PetscInt ijk[3] = {i, j, k};
+  PetscReal      r2     = 0;
+  for (PetscInt e = 0; e < ice.dim; ++e) {
+    if (e == d) continue;
+    const PetscReal x = ice.lower[e] + (ijk[e] + 0.5) * ice.h[e] - bc.jet_center[e];
+    r2 += x * x;
+  }
+  return r2 <= bc.jet_radius * bc.jet_radius ? bc.jet : bc.inflow;
+}
 
 // Set-up (setup.cxx). `nodes` is the MPM node DMDA whose ownership the cell DMDA copies;
 // grid_* describe the box. Reads every -ice_ option and the gas materials; *ice = null when the

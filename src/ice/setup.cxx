@@ -59,6 +59,58 @@ static PetscErrorCode ReadExchange(IceSolver &ice, PetscOptionItems *PetscOption
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// A jet on inflow face (d, s): -ice_inflow_<face>_jet (its state, as -ice_inflow_<face>), _jet_center
+// (m, default the face's centre), _jet_radius (m) and _jet_material (default the face's material).
+// The face cells whose centre lies within the radius of the centre along the face (a slot of that
+// half-width in 2-D, a disc in 3-D) take the jet's state, the others the face's (the coflow; IceInflowAt).
+static PetscErrorCode ReadInflowJet(IceSolver &ice, PetscOptionItems *PetscOptionsObject, PetscInt d, int s, const char face_opt[], const char inflow_opt[])
+{
+  IceFaceBC        &bc = ice.bc[d][s];
+  const std::string jet_opt = std::string(inflow_opt) + "_jet", center_opt = jet_opt + "_center", radius_opt = jet_opt + "_radius", material_opt = jet_opt + "_material";
+  PetscReal         state[5] = {0, 0, 0, 0, 0}, center[3] = {0, 0, 0}, radius = 0;
+  PetscInt          ns = 5, nc = 3;
+  PetscBool         jet_set, center_set, radius_set, material_set;
+  char              buf[256];
+  PetscFunctionBeginUser;
+  for (PetscInt e = 0; e < ice.dim; ++e) center[e] = ice.lower[e] + 0.5 * ice.cells[e] * ice.h[e];
+  const std::string jet_help = "Jet on this inflow face: density (kg/m^3), velocity (m/s, dim values), temperature (K) in the face cells whose centre lies within " + radius_opt + " of " + center_opt + "; the face's other cells take " + inflow_opt + " (the coflow). Default: no jet";
+  const std::string center_help = "Jet centre (m, dim values; the component normal to the face is not used). Default: the face's centre";
+  const std::string radius_help = "Jet radius (m, > 0; required with " + jet_opt + "): in 2-D the half-width of the slot along the face, in 3-D the radius of the disc on the face";
+  const std::string material_help = "Jet: the gas material that flows in the jet (default: the face's, " + std::string(inflow_opt) + "_material)";
+  PetscCall(PetscOptionsRealArray(jet_opt.c_str(), jet_help.c_str(), "", state, &ns, &jet_set));
+  PetscCall(PetscOptionsRealArray(center_opt.c_str(), center_help.c_str(), "", center, &nc, &center_set));
+  PetscCall(PetscOptionsReal(radius_opt.c_str(), radius_help.c_str(), "", radius, &radius, &radius_set));
+  PetscCall(PetscOptionsString(material_opt.c_str(), material_help.c_str(), "", "", buf, sizeof(buf), &material_set));
+  const char *given = jet_set ? jet_opt.c_str() : center_set ? center_opt.c_str() : radius_set ? radius_opt.c_str() : material_set ? material_opt.c_str() : nullptr;
+  if (!given) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(bc.type == IceBC::Inflow, ice.comm, PETSC_ERR_USER_INPUT, "Option %s is given, but %s is %s: a jet is part of an inflow face (%s inflow)", given, face_opt, IceBCNames[(int)bc.type], face_opt);
+  PetscCheck(jet_set, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %s, the jet's state: density, velocity (%" PetscInt_FMT " components), temperature", given, jet_opt.c_str(), ice.dim);
+  PetscCheck(ns == ice.dim + 2, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %" PetscInt_FMT " values: density, velocity (%" PetscInt_FMT " components), temperature; got %" PetscInt_FMT, jet_opt.c_str(), ice.dim + 2, ice.dim, ns);
+  PetscCall(CheckRange(ice.comm, (jet_opt + " (density, kg/m^3)").c_str(), state[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(ice.comm, (jet_opt + " (temperature, K)").c_str(), state[ice.dim + 1], 0, PETSC_MAX_REAL, PETSC_TRUE));
+  for (PetscInt c = 0; c <= ice.dim; ++c) PetscCheck(std::isfinite(state[c]), ice.comm, PETSC_ERR_USER_INPUT, "Option %s: value %" PetscInt_FMT " is not finite", jet_opt.c_str(), c + 1);
+  PetscCheck(radius_set, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %s (m, > 0): the jet's half-width (2-D) or radius (3-D) along the face", jet_opt.c_str(), radius_opt.c_str());
+  PetscCall(CheckRange(ice.comm, (radius_opt + " (m)").c_str(), radius, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  if (center_set) PetscCheck(nc == ice.dim, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %" PetscInt_FMT " values (m, one per dimension), got %" PetscInt_FMT, center_opt.c_str(), ice.dim, nc);
+  for (PetscInt e = 0; e < ice.dim; ++e) PetscCheck(std::isfinite(center[e]), ice.comm, PETSC_ERR_USER_INPUT, "Option %s: value %" PetscInt_FMT " is not finite", center_opt.c_str(), e + 1);
+  bc.has_jet      = true;
+  bc.jet_radius   = radius;
+  bc.jet.material = bc.inflow.material;
+  bc.jet.state[0] = state[0];
+  for (PetscInt c = 0; c < ice.dim; ++c) bc.jet.state[1 + c] = state[1 + c];
+  bc.jet.state[4] = state[ice.dim + 1];
+  for (PetscInt e = 0; e < ice.dim; ++e) bc.jet_center[e] = center[e];
+  if (material_set && ice.nmat) PetscCall(MaterialIndex(ice, material_opt.c_str(), buf, &bc.jet.material));
+  // a jet that covers no face cell would be the coflow alone without a word
+  PetscInt covered = 0, n[3] = {1, 1, 1};
+  for (PetscInt e = 0; e < ice.dim; ++e) n[e] = e == d ? 1 : ice.cells[e];
+  for (PetscInt k = 0; k < n[2] && !covered; ++k)
+    for (PetscInt j = 0; j < n[1] && !covered; ++j)
+      for (PetscInt i = 0; i < n[0] && !covered; ++i) covered += &IceInflowAt(ice, d, s, i, j, k) == &bc.jet;
+  PetscCheck(covered, ice.comm, PETSC_ERR_USER_INPUT, "Option %s = %g m: the jet about %s covers no cell centre of the face (cells %g m wide along it); widen it or move the centre onto the face", radius_opt.c_str(), (double)radius, center_opt.c_str(), (double)ice.h[d == 0 ? 1 : 0]);
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
 {
   char     *names[kIceMaxMaterials];
@@ -159,12 +211,13 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
         PetscCheck(set && ns == ice.dim + 2, ice.comm, PETSC_ERR_USER_INPUT, "Option %s inflow needs %s with %" PetscInt_FMT " values: density, velocity (%" PetscInt_FMT " components), temperature", face_opt[d][s], inflow_opt[d][s], ice.dim + 2, ice.dim);
         PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
         PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[ice.dim + 1], 0, PETSC_MAX_REAL, PETSC_TRUE));
-        bc.state[0] = state[0];
-        for (PetscInt c = 0; c < ice.dim; ++c) bc.state[1 + c] = state[1 + c];
-        bc.state[4] = state[ice.dim + 1];
+        bc.inflow.state[0] = state[0];
+        for (PetscInt c = 0; c < ice.dim; ++c) bc.inflow.state[1 + c] = state[1 + c];
+        bc.inflow.state[4] = state[ice.dim + 1];
       }
       PetscCall(PetscOptionsString(inflow_mat[d][s], "Inflow: the gas material that flows in (default: the first)", "", "", buf, sizeof(buf), &set));
-      if (set && ice.nmat) PetscCall(MaterialIndex(ice, inflow_mat[d][s], buf, &bc.material));
+      if (set && ice.nmat) PetscCall(MaterialIndex(ice, inflow_mat[d][s], buf, &bc.inflow.material));
+      PetscCall(ReadInflowJet(ice, PetscOptionsObject, d, s, face_opt[d][s], inflow_opt[d][s]));
       // An open face: the pressure drives the flow through it, and a semi-implicit run keeps its level
       PetscCall(PetscOptionsReal(outflow_p[d][s], "Outflow: the far-field pressure that the face's ghost cells hold (Pa), >= 0; 0: zero gradient, as the other fields (a semi-implicit run with every face zero-gradient has no pressure level: it drifts)", "", bc.pressure, &bc.pressure, &set));
       if (set) {
@@ -573,6 +626,18 @@ PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer)
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) PetscCall(PetscViewerASCIIPrintf(viewer, " %s %s", faces[d][s], IceBCNames[(int)ice.bc[d][s].type]));
   PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+  for (PetscInt d = 0; d < ice.dim; ++d)
+    for (int s = 0; s < 2; ++s) {
+      const IceFaceBC &bc = ice.bc[d][s];
+      if (bc.type != IceBC::Inflow) continue;
+      const IceInflowState *states[2] = {&bc.inflow, bc.has_jet ? &bc.jet : nullptr};
+      for (int which = 0; which < 2 && states[which]; ++which) {
+        const IceInflowState &in = *states[which];
+        PetscCall(PetscViewerASCIIPrintf(viewer, "    inflow %s%s: %s, density %g kg/m^3, velocity (%g, %g, %g) m/s, temperature %g K", faces[d][s], which ? " jet" : (bc.has_jet ? " coflow" : ""), ice.nmat ? ice.materials[in.material].name.c_str() : "", (double)in.state[0], (double)in.state[1], (double)in.state[2], (double)in.state[3], (double)in.state[4]));
+        if (which) PetscCall(PetscViewerASCIIPrintf(viewer, " within %g m of (%g, %g, %g) m along the face", (double)bc.jet_radius, (double)bc.jet_center[0], (double)bc.jet_center[1], (double)bc.jet_center[2]));
+        PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
+      }
+    }
   for (const IceMaterial &m : ice.materials) {
     PetscCall(PetscViewerASCIIPrintf(viewer, "    gas material %s: ", m.name.c_str()));
     PetscCall(m.eos->View(viewer));

@@ -106,7 +106,8 @@ enum RankValue : int {
   kDragEnergyChange = kBcImpulse + 3,     // the gas's energy diagnostics, IceSolver::EnergyDiagnostics order
   kCouplingCounters = kDragEnergyChange + IceSolver::kEnergyDiagnostics, // the coupling's budget counters
   kFallbackCounters = kCouplingCounters + kNumCouplingCounters, // the gas's energy fallbacks: the remap's, the exchange's, then by cell class
-  kNumRankValues = kFallbackCounters + 2 + kIceFallbackClasses
+  kBoundaryFaceMass = kFallbackCounters + 2 + kIceFallbackClasses, // the gas's IceBoundaryBudget face_mass, xmin, xmax, ymin, ... (6)
+  kNumRankValues = kBoundaryFaceMass + 6
 };
 
 // ---- Identity and integrity --------------------------------------------------------------------
@@ -617,6 +618,7 @@ PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
     const IceBoundaryBudget &f = sim.ice->boundary;
     const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
     for (int k = 0; k < 9; ++k) mine[kBoundaryBudget + k] = values[k];
+    for (int k = 0; k < 6; ++k) mine[kBoundaryFaceMass + k] = f.face_mass[k / 2][k % 2];
     const auto diagnostics = sim.ice->EnergyDiagnostics();
     for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) mine[kDragEnergyChange + k] = *diagnostics[k];
   }
@@ -1169,6 +1171,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     f.energy = mine[kBoundaryBudget + 4];
     f.work   = mine[kBoundaryBudget + 5];
     for (int d = 0; d < 3; ++d) f.impulse[d] = mine[kBoundaryBudget + 6 + d];
+    for (int k = 0; k < 6; ++k) f.face_mass[k / 2][k % 2] = mine[kBoundaryFaceMass + k];
     const auto diagnostics = sim.ice->EnergyDiagnostics();
     for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) *diagnostics[k] = mine[kDragEnergyChange + k];
   }

@@ -158,6 +158,7 @@ namespace {
 // term seen so far (momentum: vector norms).
 struct Budget {
   PetscReal solid_mass = 0, gas_mass = 0, open_mass = 0, removed_mass = 0;
+  PetscReal open_mass_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}; // of open_mass, each domain face's (not in the sums)
   PetscReal solid_momentum[3] = {0, 0, 0}, gas_momentum[3] = {0, 0, 0}, open_momentum[3] = {0, 0, 0};
   PetscReal face_impulse[3] = {0, 0, 0}, bc_impulse[3] = {0, 0, 0}, removed_momentum[3] = {0, 0, 0};
   PetscReal solid_kinetic = 0, solid_internal = 0, heat_to_particles = 0, reactant_thermal = 0, gas_kinetic = 0, gas_internal = 0;
@@ -185,7 +186,7 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kCoupling = 25, kCount = kCoupling + kNumCouplingCounters };
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kCoupling = 25, kFaceMass = kCoupling + kNumCouplingCounters, kCount = kFaceMass + 6 };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
@@ -199,6 +200,7 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   local[kOpen + 4]      = f.energy;
   local[kOpen + 5]      = f.work;
   local[kRemovedMass]   = sim.diag.removed_mass;
+  for (int k = 0; k < 6; ++k) local[kFaceMass + k] = f.face_mass[k / 2][k % 2];
   const auto diagnostics = sim.ice->EnergyDiagnostics(); // kDrag .. kExchangeFallback, in its order
   for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) local[kDrag + k] = *diagnostics[k];
   if (sim.coupling)
@@ -208,6 +210,7 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.solid_mass   = r.mass;
   b.gas_mass     = gas.mass;
   b.open_mass    = global[kOpen];
+  for (int k = 0; k < 6; ++k) b.open_mass_face[k / 2][k % 2] = global[kFaceMass + k];
   b.removed_mass = global[kRemovedMass] - counter[kBurntParticleMass]; // burnt mass went to the gas
   for (int d = 0; d < 3; ++d) {
     b.solid_momentum[d]   = r.momentum[d];
@@ -534,6 +537,11 @@ PetscErrorCode WriteSummary(Simulation &sim)
     const PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
     s << "  \"budget\": {\n";
     s << "    \"mass\": {\"particles\": " << b.solid_mass << ", \"gas\": " << b.gas_mass << ", \"open_faces\": " << b.open_mass << ", \"removed_particles\": " << b.removed_mass;
+    s << ", \"open_faces_by_face\": {"; // out positive, per domain face
+    const char *face_names[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
+    for (int d = 0; d < sim.ice->dim; ++d)
+      for (int side = 0; side < 2; ++side) s << (d || side ? ", " : "") << "\"" << face_names[d][side] << "\": " << b.open_mass_face[d][side];
+    s << "}";
     s << ", \"initial\": " << init[0] << ", \"residual\": " << b.mass - init[0] << ", \"largest_term\": " << scale[0] << ", \"error\": " << b.mass_error << "},\n";
     const PetscReal p0[3] = {init[1], init[2], init[3]};
     s << "    \"momentum\": {\"particles\": " << vec(b.solid_momentum) << ", \"gas\": " << vec(b.gas_momentum) << ", \"open_faces\": " << vec(b.open_momentum);
