@@ -110,6 +110,8 @@ PetscErrorCode ApplyPhase(Simulation &sim)
   const RunPhase p  = ph.Current();
   PetscFunctionBeginUser;
   sim.ice->sound_speed_knob = p == RunPhase::HeatUp ? ph.heatup_sound_speed_knob : ph.mechanics_sound_speed_knob;
+  if (ph.semi_implicit_gas) sim.ice->pressure_solver = p == RunPhase::Mechanics && ph.mechanics_explicit ? IcePressureSolver::Explicit : IcePressureSolver::SemiImplicit;
+  if (p == RunPhase::Mechanics && ph.mechanics_explicit) sim.ice->sound_speed_knob = 1; // (explicit: the sound speed in full)
   PetscCall(CouplingMeasureSurfaceHeat(sim, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
   if (sim.heat) PetscCall(HeatSetSurfaceSource(sim, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -158,7 +160,13 @@ PetscErrorCode SwitchTo(Simulation &sim, RunPhase to, const std::string &why)
   while (ph.Current() != to) ph.current += 1;
   ph.switch_time[(int)to] = sim.time;
   PetscCall(ApplyPhase(sim));
-  if (ph.write_checkpoint) PetscCall(CheckpointWrite(sim));
+  if (ph.write_checkpoint) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "phase_%s_%06d.h5", RunPhaseName(to), (int)sim.step);
+    PetscCall(CheckpointWrite(sim));
+    PetscCall(CheckpointKeepAs(sim, name));
+    PetscCall(PetscPrintf(sim.comm, "  wrote %s/%s (continue from it with -restart %s/%s)\n", sim.output.dir.c_str(), name, sim.output.dir.c_str(), name));
+  }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 } // namespace
@@ -178,19 +186,27 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(PetscOptionsReal("-phase_heat_only_dt", "heat_only: the time step (s), > 0 (conduction sub-steps within it as -mpm_heat_cfl asks)", "", ph.heat_only_dt, &ph.heat_only_dt, nullptr));
   PetscCall(PetscOptionsReal("-phase_flame_temperature", "T_f of the surface heat G_p (T_f - T_p) (K), >= 0; 0: the hottest gas at the end of the heat-up", "", ph.flame_temperature, &ph.flame_temperature, nullptr));
   PetscCall(PetscOptionsReal("-phase_ignition_temperature", "The run goes to mechanics once a particle of the ignition material is this hot (K), >= 0; 0: its burn model's ignition temperature", "", ph.ignition_temperature, &ph.ignition_temperature, nullptr));
+  {
+    const char *const criteria[] = {"burn_model", "temperature"};
+    int               choice     = ph.ignition_by_temperature ? 1 : 0;
+    PetscCall(OptionsChoice(PetscOptionsObject, "-phase_ignition", "What ends the heat-up and heat_only: burn_model (its ignition criterion holds in a cell) or temperature (a particle of the ignition material reaches -phase_ignition_temperature)", criteria, 2, &choice, nullptr));
+    ph.ignition_by_temperature = (PetscBool)(choice == 1);
+  }
   PetscCall(PetscOptionsString("-phase_ignition_material", "The solid whose temperature decides ignition; default: the one with a burn model (-<material>_burn_type)", "", ignition, ignition, sizeof(ignition), &has_material));
-  PetscCall(PetscOptionsBool("-phase_checkpoint", "Write a checkpoint at each phase switch", "", ph.write_checkpoint, &ph.write_checkpoint, nullptr));
+  PetscCall(PetscOptionsReal("-phase_mechanics_duration", "mechanics: the run ends this long after they began (s), >= 0; 0: at -final_time (an ignition time is not known before the run)", "", ph.mechanics_duration, &ph.mechanics_duration, nullptr));
+  PetscCall(PetscOptionsBool("-phase_mechanics_explicit", "mechanics: the gas pressure explicit (the exploding scenes' step; the heat-up needs -ice_pressure_solver semi_implicit for its long steps), with the sound-speed knob 1", "", ph.mechanics_explicit, &ph.mechanics_explicit, nullptr));
+  PetscCall(PetscOptionsBool("-phase_checkpoint", "Write a checkpoint at each phase switch, kept as phase_<phase>_<step>.h5", "", ph.write_checkpoint, &ph.write_checkpoint, nullptr));
   PetscOptionsEnd();
   if (sim.help) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ParsePhases(sim.comm, text, ph.order));
   PetscCall(CheckRange(sim.comm, "-phase_heatup_end_time", ph.heatup_end_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
   if (!has_window) ph.flux_window = 0.2 * ph.heatup_end_time;
-  PetscCall(CheckRange(sim.comm, "-phase_flux_window", ph.flux_window, 0, ph.heatup_end_time, PETSC_TRUE));
-  PetscCheck(ph.flux_window <= ph.heatup_end_time, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_flux_window = %g s is out of range: it must be in (0, -phase_heatup_end_time = %g s]", (double)ph.flux_window, (double)ph.heatup_end_time);
+  PetscCheck(ph.flux_window > 0 && ph.flux_window <= ph.heatup_end_time, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_flux_window = %g s is out of range: it must be in (0, -phase_heatup_end_time = %g s]", (double)ph.flux_window, (double)ph.heatup_end_time);
   PetscCall(CheckRange(sim.comm, "-phase_heatup_sound_speed_knob", ph.heatup_sound_speed_knob, 0, 1, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-phase_heatup_dt_max", ph.heatup_dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_heat_only_dt", ph.heat_only_dt, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_flame_temperature", ph.flame_temperature, 0, 1e6, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-phase_mechanics_duration", ph.mechanics_duration, 0, PETSC_MAX_REAL, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-phase_ignition_temperature", ph.ignition_temperature, 0, 1e6, PETSC_FALSE));
   if (has_material) {
     std::string names;
@@ -231,13 +247,15 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   }
   PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
   if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
-  PetscCheck(ph.ignition_temperature > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.materials[ph.ignition_material]->Name(), model.c_str());
+  PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.materials[ph.ignition_material]->Name(), model.c_str());
   ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
+  ph.semi_implicit_gas          = (PetscBool)(sim.ice->pressure_solver == IcePressureSolver::SemiImplicit);
   if (ph.switch_time[(int)ph.order[0]] < 0) ph.switch_time[(int)ph.order[0]] = sim.time;
   PetscCall(ApplyPhase(sim));
   std::string list;
   for (RunPhase p : ph.order) list += (list.empty() ? "" : " -> ") + std::string(RunPhaseName(p));
-  PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  else PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s's criterion in a cell of %s\n", list.c_str(), RunPhaseName(ph.Current()), model.c_str(), sim.materials[ph.ignition_material]->Name()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -285,18 +303,47 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
   Phases &ph = sim.phases;
   PetscFunctionBeginUser;
   *stop = PETSC_FALSE;
-  if (!ph.Enabled() || ph.Current() == RunPhase::Mechanics) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscReal  x[3] = {0, 0, 0};
-  PetscInt64 id    = -1;
-  PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id, x));
-  if (ph.hottest_ignition >= ph.ignition_temperature) {
-    char why[512];
-    std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
+  if (!ph.Enabled()) PetscFunctionReturn(PETSC_SUCCESS);
+  if (ph.Current() == RunPhase::Mechanics) {
+    const PetscReal began = ph.switch_time[(int)RunPhase::Mechanics];
+    if (ph.mechanics_duration > 0 && began >= 0 && sim.time >= (began + ph.mechanics_duration) * (1 - 1e-12)) {
+      PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %g s of mechanics (-phase_mechanics_duration), begun at %g s\n", sim.step, (double)sim.time, (double)ph.mechanics_duration, (double)began));
+      *stop = PETSC_TRUE;
+    }
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
+  char why[512] = "";
+  if (ph.ignition_by_temperature) {
+    PetscReal  x[3] = {0, 0, 0};
+    PetscInt64 id    = -1;
+    PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id, x));
+    if (ph.hottest_ignition >= ph.ignition_temperature)
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
+  } else {
+    // the burn model's own test on the cells: heat_only moves only the particles' temperatures, so
+    // they are projected first (the heat-up's step projected them at its start)
+    if (ph.Current() == RunPhase::HeatOnly) {
+      PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+      PetscCall(CouplingProjectSolids(sim));
+    }
+    PetscInt64 cells;
+    PetscReal  x[3];
+    PetscCall(CouplingIgnitingCells(sim, &cells, x, &ph.hottest_ignition));
+    if (cells > 0) std::snprintf(why, sizeof(why), "ignition: the burn model's criterion holds in %lld cell(s); the hottest reactant surface cell, at (%g, %g, %g) m, is at %g K", (long long)cells, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition);
+  }
+  if (why[0]) {
     if (Has(ph, RunPhase::Mechanics)) PetscCall(SwitchTo(sim, RunPhase::Mechanics, why));
     else {
       PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s (-phases has no mechanics)\n", sim.step, (double)sim.time, why));
       ph.switch_time[(int)RunPhase::Mechanics] = sim.time; // the ignition time, for the summary
       *stop = PETSC_TRUE;
+      if (ph.write_checkpoint) { // (continued with -phases ...,mechanics, it goes on from the ignition)
+        char name[64];
+        std::snprintf(name, sizeof(name), "phase_ignition_%06d.h5", (int)sim.step);
+        PetscCall(CheckpointWrite(sim));
+        PetscCall(CheckpointKeepAs(sim, name));
+        PetscCall(PetscPrintf(sim.comm, "  wrote %s/%s\n", sim.output.dir.c_str(), name));
+      }
     }
     PetscFunctionReturn(PETSC_SUCCESS);
   }

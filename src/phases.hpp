@@ -14,12 +14,15 @@
 //              measured surface heat, instead of lowering the ignition temperature.
 //   mechanics  the full coupled step (the run as every other scene runs).
 //
-// From heatup or heat_only the run goes to mechanics once a particle of the ignition material
+// From heatup or heat_only the run goes to mechanics once the burn model's ignition criterion holds
+// in a cell (-phase_ignition burn_model, the default: the same test its burning starts with, on the
+// cells projected from the particles), or once a particle of the ignition material
 // (-phase_ignition_material; default the solid with a burn model) reaches the ignition temperature
-// (-phase_ignition_temperature; default the burn model's own: Simple Burn's T_th, Steady Burn's
-// T_ign); heatup goes to heat_only (or mechanics) at -phase_heatup_end_time. A checkpoint is written
-// at each switch (-phase_checkpoint), so a run can be continued from the end of the heat-up with
-// other options (-restart DIR -restart_allow_option_change).
+// (-phase_ignition temperature; -phase_ignition_temperature, default the burn model's own: Simple
+// Burn's T_th, Steady Burn's T_ign); heatup goes to heat_only (or mechanics) at -phase_heatup_end_time. A checkpoint is written
+// at each switch (-phase_checkpoint) and kept as phase_<phase>_<step>.h5 (pruning leaves it), so a
+// run can be continued from the end of the heat-up with other options (-restart FILE
+// -restart_allow_option_change).
 #pragma once
 #include "petsc_compat.hpp"
 #include <string>
@@ -43,7 +46,10 @@ struct Phases {
   PetscReal flame_temperature        = 0;     // K; 0: the hottest gas at the window's end
   PetscReal ignition_temperature     = 0;     // K; 0: the burn model's
   PetscInt  ignition_material        = -1;    // material id
+  PetscBool ignition_by_temperature  = PETSC_FALSE; // -phase_ignition temperature: a particle's temperature, not the burn model's cells
   PetscBool write_checkpoint         = PETSC_TRUE;
+  PetscReal mechanics_duration       = 0;     // s; > 0: the run ends this long after mechanics began
+  PetscBool mechanics_explicit       = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)
 
   // State (checkpointed: /run/phases)
   size_t    current          = 0;  // index into order
@@ -54,6 +60,7 @@ struct Phases {
   PetscReal hottest_ignition = 0;  // K: the ignition material's hottest particle, last check
 
   PetscReal mechanics_sound_speed_knob = 0; // the gas's own k, restored for mechanics
+  PetscBool semi_implicit_gas = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one
   std::vector<PetscReal> temperature_before; // per local particle, reused: the heat-up's measurement
   PetscLogEvent ev_measure = 0, ev_heat_only = 0;
 

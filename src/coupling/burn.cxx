@@ -148,6 +148,93 @@ static PetscReal GasRoom(const IceSolver &ice, const PetscScalar *a, PetscInt id
   return room;
 }
 
+// What the burn model of solid s reads about local cell (i, j, k) (ice.md 3.1-3.3), and the gradient
+// of the reactant's nodal mass (the burning surface's normal is -grad).
+static void CellBurnInput(Simulation &sim, const PetscScalar *a, const PetscScalar *nodes, PetscInt i, PetscInt j, PetscInt k, PetscInt s, BurnInput *in, PetscReal grad[3])
+{
+  Coupling            &c   = *sim.coupling;
+  IceSolver           &ice = *sim.ice;
+  const LocalNodeIndex index(sim.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
+  const PetscReal      V    = ice.CellVolume();
+  const PetscScalar   *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
+  // the hottest material that fills at least a fifth of the cell (Simple Burn's ignition)
+  PetscReal T_hot = 0;
+  for (PetscInt m = 0; m < n; ++m)
+    if (cell[ice.Offset(m, icef::theta)] > 0.2) T_hot = PetscMax(T_hot, cell[ice.Offset(m, icef::temp)]);
+  const PetscInt  m = c.first + s, g = c.product[s];
+  const PetscReal M = cell[ice.Offset(m, icef::rho)] * V;
+  // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1). A node on a
+  // domain face holds the mass of half a neighbourhood: it counts double (ice.md 7.10), or
+  // every symmetry plane through a reactant would look like a burning surface.
+  PetscReal Mmax = 0, Mmin = PETSC_MAX_REAL;
+  grad[0] = grad[1] = grad[2] = 0;
+  ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
+    const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride] * w * (dim == 3 ? 8 : 4);
+    Mmax               = PetscMax(Mmax, mn);
+    Mmin               = PetscMin(Mmin, mn);
+    const PetscInt local[3] = {node[0] - i, node[1] - j, node[2] - k};
+    for (PetscInt d = 0; d < dim; ++d) grad[d] += (local[d] ? 1.0 : -1.0) * mn / (ice.h[d] * (dim == 3 ? 4 : 2));
+  });
+  in->p      = cell[ice.CellOffset(icef::press_eq)];
+  in->T_s    = cell[ice.Offset(m, icef::temp)];
+  in->T_g    = cell[ice.Offset(g, icef::temp)];
+  in->rho_s  = 1 / cell[ice.Offset(m, icef::spvol)];
+  in->area   = BurnSurfaceArea(dim, ice.h, grad, V);
+  in->dt     = ice.dt;
+  in->M_s    = M;
+  in->M_tiny = ice.rho_tiny * c.rho0[s] * V; // the projection's floor (CouplingProjectSolids): M - M_tiny is the particles'
+  // a corner below 1e-9 of the largest holds no reactant: a particle domain whose edge meets
+  // the node gives it a round-off weight, and Simple Burn's contrast < 1 would flip on it
+  if (Mmin < 1e-9 * Mmax) Mmin = 0;
+  in->mass_contrast = Mmax > 0 ? (Mmax - Mmin) / Mmax : 0;
+  in->T_hot         = T_hot;
+  in->n_particles   = M > 2 * in->M_tiny ? 1 : 0;
+}
+
+PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot)
+{
+  Coupling          &c   = *sim.coupling;
+  IceSolver         &ice = *sim.ice;
+  const PetscScalar *nodes, *a;
+  PetscInt64         local = 0;
+  struct {
+    PetscReal   value;
+    PetscMPIInt rank;
+  } hottest = {-1, sim.rank}, global;
+  PetscReal at[3] = {0, 0, 0};
+  PetscFunctionBeginUser;
+  PetscCall(VecGetArrayRead(c.mass_local, &nodes));
+  PetscCall(VecGetArrayRead(ice.local, &a));
+  for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
+    for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
+      for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i)
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          if (!c.burn[s] || c.product[s] < 0) continue;
+          BurnInput in;
+          PetscReal grad[3];
+          CellBurnInput(sim, a, nodes, i, j, k, s, &in, grad);
+          if (!(in.M_s > 2 * in.M_tiny)) continue; // (a cell without the reactant's particles)
+          const bool ignites = c.burn[s]->Ignites(in);
+          if (ignites) local += 1;
+          // the closest to igniting: the hottest reactant-bearing cell that the criterion sees
+          if (in.mass_contrast > 0 && in.T_hot > hottest.value) {
+            hottest.value = in.T_hot;
+            const PetscInt ijk[3] = {i, j, k};
+            for (PetscInt d = 0; d < ice.dim; ++d) at[d] = ice.lower[d] + (ijk[d] + 0.5) * ice.h[d];
+          }
+        }
+  PetscCall(VecRestoreArrayRead(ice.local, &a));
+  PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
+  PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  static_assert(sizeof(PetscReal) == sizeof(double), "MPI_DOUBLE_INT below");
+  PetscCallMPI(MPI_Allreduce(&hottest, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscCallMPI(MPI_Bcast(at, 3, MPIU_REAL, global.rank, sim.comm));
+  for (int d = 0; d < 3; ++d) where[d] = at[d];
+  *T_hot = global.value;
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CouplingBurn(Simulation &sim)
 {
   Coupling          &c   = *sim.coupling;
@@ -161,8 +248,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
   std::fill(ice.momentum_source.begin(), ice.momentum_source.end(), 0);
   std::fill(ice.energy_source.begin(), ice.energy_source.end(), 0);
   std::fill(c.burnt_fraction.begin(), c.burnt_fraction.end(), 0);
-  const LocalNodeIndex index(sim.grid);
-  const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
+  const PetscInt       dim = ice.dim, n = ice.nmat;
   const PetscReal      V   = ice.CellVolume();
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
   PetscCall(VecGetArrayRead(ice.local, &a));
@@ -171,40 +257,13 @@ PetscErrorCode CouplingBurn(Simulation &sim)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscInt     idx  = ice.LocalIndex(i, j, k);
         const PetscScalar *cell = a + idx * ice.stride;
-        // the hottest material that fills at least a fifth of the cell (Simple Burn's ignition)
-        PetscReal T_hot = 0;
-        for (PetscInt m = 0; m < n; ++m)
-          if (cell[ice.Offset(m, icef::theta)] > 0.2) T_hot = PetscMax(T_hot, cell[ice.Offset(m, icef::temp)]);
         for (PetscInt s = 0; s < c.nsolid; ++s) {
           if (!c.burn[s] || c.product[s] < 0) continue;
           const PetscInt  m = c.first + s, g = c.product[s];
-          const PetscReal M = cell[ice.Offset(m, icef::rho)] * V;
-          // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1). A node on a
-          // domain face holds the mass of half a neighbourhood: it counts double (ice.md 7.10), or
-          // every symmetry plane through a reactant would look like a burning surface.
-          PetscReal Mmax = 0, Mmin = PETSC_MAX_REAL, grad[3] = {0, 0, 0};
-          ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
-            const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride] * w * (dim == 3 ? 8 : 4);
-            Mmax               = PetscMax(Mmax, mn);
-            Mmin               = PetscMin(Mmin, mn);
-            const PetscInt local[3] = {node[0] - i, node[1] - j, node[2] - k};
-            for (PetscInt d = 0; d < dim; ++d) grad[d] += (local[d] ? 1.0 : -1.0) * mn / (ice.h[d] * (dim == 3 ? 4 : 2));
-          });
           BurnInput in;
-          in.p             = cell[ice.CellOffset(icef::press_eq)];
-          in.T_s           = cell[ice.Offset(m, icef::temp)];
-          in.T_g           = cell[ice.Offset(g, icef::temp)];
-          in.rho_s         = 1 / cell[ice.Offset(m, icef::spvol)];
-          in.area          = BurnSurfaceArea(dim, ice.h, grad, V);
-          in.dt            = ice.dt;
-          in.M_s           = M;
-          in.M_tiny        = ice.rho_tiny * c.rho0[s] * V; // the projection's floor (CouplingProjectSolids): M - M_tiny is the particles'
-          // a corner below 1e-9 of the largest holds no reactant: a particle domain whose edge meets
-          // the node gives it a round-off weight, and Simple Burn's contrast < 1 would flip on it
-          if (Mmin < 1e-9 * Mmax) Mmin = 0;
-          in.mass_contrast = Mmax > 0 ? (Mmax - Mmin) / Mmax : 0;
-          in.T_hot         = T_hot;
-          in.n_particles   = M > 2 * in.M_tiny ? 1 : 0;
+          PetscReal grad[3];
+          CellBurnInput(sim, a, nodes, i, j, k, s, &in, grad);
+          const PetscReal M = in.M_s;
           BurnOutput out;
           PetscCall(c.burn[s]->Evaluate(in, &out));
           if (!(out.dm > 0)) continue;

@@ -43,6 +43,10 @@ PetscErrorCode CouplingBurnHelp(Simulation &sim); // -help: list the burning opt
 // The burn model of solid material `material` (a material id): its name ("none" if inert) and the
 // temperature its ignition criterion asks (K, 0 if none).
 PetscErrorCode CouplingIgnition(Simulation &sim, PetscInt material, std::string *model, PetscReal *temperature);
+// The cells (global count) whose burn model's ignition criterion holds now, from this step's
+// projection (CouplingProjectSolids); where and how hot (the criterion's T_hot, K) the hottest cell
+// holding reactant particles on a reactant surface is. Burns nothing.
+PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot);
 PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles);
 PetscErrorCode CouplingBurn(Simulation &sim);
 PetscErrorCode CouplingBurnParticles(Simulation &sim);

@@ -13,11 +13,13 @@
 //                             outline; a trace of solid beside a body takes none; in 2-D per metre)
 //   the outward normal        n = -grad theta_s / |grad theta_s| (central differences)
 //   the gas it faces          the cell two cells out along n (c + round(2 n)), its gases' M c_v-weighted
-//                             Lagrangian temperature T_g
+//                             Lagrangian temperature T_g; only where the solid thins along the way
+//                             (a dip between two solids is no outer surface)
 //   the heat                  Q_c = h A_c (T_g - T_s,c) dt, capped at half of what would equalise
 //                             the two heat capacities (an explicit exchange cannot overshoot)
-// The solids of c share Q_c by volume fraction (their Lagrangian temperatures, which reach the
-// particles through CouplingIncrementsToNodes and CouplingHeatToParticles); the gases of the far
+// The solids of c share Q_c as they make up the solid one cell out along n (the solid the gas meets;
+// their Lagrangian temperatures, which reach the particles through CouplingIncrementsToNodes and
+// CouplingHeatToParticles); the gases of the far
 // cell lose it by M c_v (temperature and total energy), summed over the ranks through a cell DMDA.
 // Total energy is conserved to round-off. Runs after the cell exchange, before its budget mark.
 #include "coupling_impl.hpp"
@@ -83,15 +85,20 @@ PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
         for (PetscInt d = 0; d < dim; ++d) gnorm += grad[d] * grad[d];
         gnorm = std::sqrt(gnorm);
         if (!(norm > 0 && gnorm > 0)) continue;
-        PetscInt far[3] = {i, j, k};
+        PetscInt far[3] = {i, j, k}, mid[3] = {i, j, k};
         bool     inside = true;
         for (PetscInt d = 0; d < dim; ++d) {
           far[d] += (PetscInt)std::lround(-2 * grad[d] / gnorm);
+          mid[d] += (PetscInt)std::lround(-grad[d] / gnorm);
           inside = inside && far[d] >= 0 && far[d] < ice.cells[d];
         }
         if (!inside) continue;
         const PetscInt     fidx = ice.LocalIndex(far[0], far[1], far[2]);
         const PetscScalar *fc   = a + fidx * S;
+        // an outer surface only: the solid thins along the ray (a dip between two solids, e.g. the
+        // gas pockets between wall and charge, is not one, though the gas beyond a thin wall is hot)
+        const PetscReal theta_mid = solid_fraction(a + ice.LocalIndex(mid[0], mid[1], mid[2]) * S);
+        if (theta_mid > theta + 0.01 || solid_fraction(fc) > theta_mid + 0.01) continue; // (0.01: the fractions' small ripples)
         PetscReal          Cg = 0, CgT = 0, Cs = 0, CsT = 0;
         for (PetscInt g = 0; g < ice.ngas; ++g) {
           const PetscReal C = fc[ice.Offset(g, icef::rho_L)] * V * ice.materials[g].eos->cv;
@@ -100,7 +107,7 @@ PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
         }
         for (PetscInt s = 0; s < c.nsolid; ++s) {
           const PetscInt  m = c.first + s;
-          const PetscReal C = cell[ice.Offset(m, icef::rho_L)] * V * ice.materials[m].eos->cv;
+          const PetscReal C = cell[ice.Offset(m, icef::rho)] * V * ice.materials[m].eos->cv; // (the mass the nodes convert its temperature change with)
           Cs += C;
           CsT += C * cell[ice.Offset(m, icef::temp_L)];
         }
@@ -110,13 +117,23 @@ PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
         // (a quarter: several surface cells may face the same gas cell)
         const PetscReal cap = 0.25 * std::fabs(Tg - Ts) * Cg * Cs / (Cg + Cs);
         Q                   = PetscMax(-cap, PetscMin(cap, Q));
-        PetscReal holding = 0; // the volume fraction of the solids that can hold heat
-        for (PetscInt s = 0; s < c.nsolid; ++s)
-          if (cell[ice.Offset(c.first + s, icef::rho_L)] > 0) holding += cell[ice.Offset(c.first + s, icef::theta)];
-        for (PetscInt s = 0; s < c.nsolid; ++s) { // the solids share it by volume fraction
-          const PetscInt  m = c.first + s;
-          const PetscReal C = cell[ice.Offset(m, icef::rho_L)] * V * ice.materials[m].eos->cv;
-          if (C > 0) cell[ice.Offset(m, icef::temp_L)] += cell[ice.Offset(m, icef::theta)] / holding * Q / C;
+        // The solids share it as they make up the solid one cell further out (the one the gas meets;
+        // on a coarse grid a thin wall's surface cells also hold the charge behind it, which must not
+        // take the fire's heat), or this cell's solid if that cell holds none of them.
+        // Only the particles' part of a cell's solid mass carries heat to them (the projection adds
+        // a floor of rho_tiny rho0 V that no particle holds).
+        const PetscScalar *mc = a + ice.LocalIndex(mid[0], mid[1], mid[2]) * S;
+        PetscReal          weight[kIceMaxMaterials], carried[kIceMaxMaterials], total = 0;
+        for (PetscInt s = 0; s < c.nsolid; ++s) carried[s] = cell[ice.Offset(c.first + s, icef::rho)] * V - ice.rho_tiny * c.rho0[s] * V;
+        for (int pass = 0; pass < 2 && !(total > 0); ++pass)
+          for (PetscInt s = 0; s < c.nsolid; ++s) {
+            weight[s] = carried[s] > ice.rho_tiny * c.rho0[s] * V ? (pass ? cell : mc)[ice.Offset(c.first + s, icef::theta)] : 0;
+            total += weight[s];
+          }
+        if (!(total > 0)) continue;
+        for (PetscInt s = 0; s < c.nsolid; ++s) {
+          const PetscInt m = c.first + s;
+          if (weight[s] > 0) cell[ice.Offset(m, icef::temp_L)] += weight[s] / total * Q / (carried[s] * ice.materials[m].eos->cv);
         }
         sink[fidx] += Q;
         given += Q;

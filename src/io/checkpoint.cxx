@@ -63,6 +63,7 @@
 #include <dirent.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <fstream>
 
 namespace burst {
 
@@ -174,7 +175,8 @@ bool RunControlOption(const std::string &name)
     "check_pointer", "is_view", "device_", "root_device", "default_device", "debugger", "start_in_debugger",
     "stop_for_debugger", "display", "error_output", "petsc", "version", "memory_view", "objects_dump", "get_total_flops",
     "tmp", "shared_tmp", "not_shared_tmp", "use_gpu", "mca"};
-  static const char *const exact[]    = {"max_steps", "final_time", "max_wall_time", "max_memory", "stop_kinetic_fraction", "mpm_energy_growth_limit", "scene", "mode"};
+  static const char *const exact[]    = {"max_steps", "final_time", "max_wall_time", "max_memory", "stop_kinetic_fraction", "mpm_energy_growth_limit", "scene", "mode",
+                                         "phases", "phase_mechanics_duration", "phase_checkpoint"}; // (which phases run, and how long, is run control)
   for (const char *p : prefixes)
     if (name.compare(0, std::strlen(p), p) == 0) return true;
   for (const char *e : exact)
@@ -945,6 +947,25 @@ PetscErrorCode CheckpointSetUp(Simulation &sim)
 }
 
 std::string CheckpointRunId() { return opts.run_id; }
+
+PetscErrorCode CheckpointKeepAs(Simulation &sim, const std::string &name)
+{
+  PetscFunctionBeginUser;
+  if (!sim.rank) {
+    const std::string from = CheckpointName(sim, sim.step), to = sim.output.dir + "/" + name;
+    std::remove(to.c_str());
+    if (link(from.c_str(), to.c_str()) != 0) { // (a file system without hard links: a copy, under a temporary name)
+      std::ifstream in(from, std::ios::binary);
+      std::ofstream out(to + ".tmp", std::ios::binary);
+      out << in.rdbuf();
+      PetscCheck(in.good() && out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not keep checkpoint %s as %s", from.c_str(), to.c_str());
+      out.close();
+      PetscCheck(std::rename((to + ".tmp").c_str(), to.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s.tmp", to.c_str());
+    }
+  }
+  PetscCallMPI(MPI_Barrier(sim.comm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
 
 PetscErrorCode CheckpointWrite(Simulation &sim)
 {

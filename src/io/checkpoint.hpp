@@ -26,4 +26,8 @@ PetscErrorCode CheckpointAfterStep(Simulation &sim, PetscBool *stop);
 // run's checkpoints (other runs' in the folder are never removed).
 PetscErrorCode CheckpointWrite(Simulation &sim);
 
+// Keeps the checkpoint of the current step also as output_dir/name, which pruning (-checkpoint_keep)
+// does not touch (a hard link, or a copy); -restart takes it like any checkpoint file.
+PetscErrorCode CheckpointKeepAs(Simulation &sim, const std::string &name);
+
 } // namespace burst
