@@ -358,6 +358,35 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+PetscErrorCode PhasesTemperatures(Simulation &sim, std::vector<PetscReal> &out)
+{
+  const size_t     nm = sim.materials.size();
+  PetscInt         n;
+  const PetscReal *T, *mass;
+  const PetscInt  *mat;
+  std::vector<PetscReal> hottest(nm, 0), sums(2 * nm, 0), global_sums(2 * nm, 0);
+  PetscFunctionBeginUser;
+  out.assign(2 * nm, 0);
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::mass, &mass));
+  PetscCall(fields.Get(field::material, &mat));
+  for (PetscInt p = 0; p < n; ++p) {
+    hottest[mat[p]] = PetscMax(hottest[mat[p]], T[p]);
+    sums[2 * mat[p]] += mass[p] * T[p];
+    sums[2 * mat[p] + 1] += mass[p];
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, hottest.data(), (int)nm, MPIU_REAL, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(sums.data(), global_sums.data(), (int)(2 * nm), MPIU_REAL, MPI_SUM, sim.comm));
+  for (size_t m = 0; m < nm; ++m) {
+    out[2 * m]     = hottest[m];
+    out[2 * m + 1] = global_sums[2 * m + 1] > 0 ? global_sums[2 * m] / global_sums[2 * m + 1] : 0;
+  }
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 std::string PhasesSummary(const Simulation &sim)
 {
   const Phases &ph = sim.phases;

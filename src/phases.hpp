@@ -78,6 +78,9 @@ PetscErrorCode PhasesMeasureHeatAfter(Simulation &sim);
 // After each step: the criteria; a switch is printed, checkpointed and sets up the next phase's step;
 // *stop when the run's last phase has ended.
 PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop);
+// Per solid material: the hottest particle's temperature and the mass-weighted mean (K), global
+// (monitor.csv's columns with -phases).
+PetscErrorCode PhasesTemperatures(Simulation &sim, std::vector<PetscReal> &out);
 // summary.json's "phases" entry (a line ending in ",\n"; empty without -phases).
 std::string PhasesSummary(const Simulation &sim);
 // The checkpoint's /run/phases record and its restore.

@@ -356,7 +356,18 @@ PetscErrorCode IceAdvect(IceSolver &ice)
               if (n == 1) c[ice.Offset(m, icef::spvol)] = 1 / rho;
               T -= eos.ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]) / cv;
             }
-            if (!(T > 0) && IceIsTrace(ice, c, m)) T = c[ice.Offset(m, icef::temp_L)];
+          }
+          // a trace (ice.hpp IceIsTrace) remapped to a non-positive temperature keeps its Lagrangian
+          // one, or takes the heaviest gas's of its cell: its mass is round-off next to its cell's,
+          // and its energy with it
+          if (!(T > 0) && IceIsTrace(ice, c, m)) {
+            PetscReal heaviest = 0, T_heaviest = 0;
+            for (PetscInt g = 0; g < ice.ngas; ++g)
+              if (c[ice.Offset(g, icef::rho)] > heaviest && c[ice.Offset(g, icef::temp_L)] > 0) {
+                heaviest   = c[ice.Offset(g, icef::rho)];
+                T_heaviest = c[ice.Offset(g, icef::temp_L)];
+              }
+            T = c[ice.Offset(m, icef::temp_L)] > 0 ? c[ice.Offset(m, icef::temp_L)] : T_heaviest;
           }
           if (!bad && !(T > 0) && !cold) bad = "temperature"; // with a cold energy the equilibration checks it
           if (!bad && !std::isfinite(T)) bad = "temperature";

@@ -342,6 +342,10 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
                         ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,ambient_stress_work,pressure_work_charged,pressure_work_held");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
+    if (sim.phases.Enabled()) { // the fire's histories (src/phases.hpp)
+      std::fprintf(csv, ",phase");
+      for (const auto &m : sim.materials) std::fprintf(csv, ",temperature_max_%s,temperature_mean_%s", m->Name(), m->Name());
+    }
     std::fprintf(csv, "\n");
   }
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8s %12s %11s %12s %12s %12s %11s %12s %12s\n", "step", "time", "dt", "kinetic", "internal", "total", "balance", "momentum_x", "momentum_y"));
@@ -359,7 +363,9 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     PetscCall(PetscTime(&now));
     if (now - sim.output.last_progress > 10.0) {
       const PetscReal fraction = sim.time / sim.run.final_time, elapsed = now - sim.wall_start;
-      PetscCall(PetscPrintf(sim.comm, "  progress: %5.1f%% of the final time, step %" PetscInt_FMT ", %.0f s elapsed, about %.0f s left\n", 100.0 * fraction, sim.step, elapsed, fraction > 0 ? elapsed * (1 - fraction) / fraction : 0.0));
+      if (sim.phases.Enabled()) // (when a phase ends is not known ahead: no estimate of what is left)
+        PetscCall(PetscPrintf(sim.comm, "  progress: phase %s, t = %g s, step %" PetscInt_FMT ", %.0f s elapsed\n", RunPhaseName(sim.phases.Current()), (double)sim.time, sim.step, elapsed));
+      else PetscCall(PetscPrintf(sim.comm, "  progress: %5.1f%% of the final time, step %" PetscInt_FMT ", %.0f s elapsed, about %.0f s left\n", 100.0 * fraction, sim.step, elapsed, fraction > 0 ? elapsed * (1 - fraction) / fraction : 0.0));
       sim.output.last_progress = now;
     }
   }
@@ -385,6 +391,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscBool expansion = PETSC_FALSE;
   PetscReal expansion_velocity = 0;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &expansion_velocity));
+  std::vector<PetscReal> phase_temperatures; // per material: the hottest particle, the mass-weighted mean
+  if (sim.phases.Enabled()) PetscCall(PhasesTemperatures(sim, phase_temperatures));
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && sim.output.monitor_csv) {
@@ -410,6 +418,10 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.ambient_stress_work, (double)b.pressure_work_charged, (double)b.pressure_work_held);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
+    if (sim.phases.Enabled()) {
+      std::fprintf(csv, ",%d", (int)sim.phases.Current());
+      for (PetscReal T : phase_temperatures) std::fprintf(csv, ",%.12e", (double)T);
+    }
     std::fprintf(csv, "\n");
     std::fflush(csv);
   }
