@@ -169,7 +169,7 @@ static PetscErrorCode Run(Simulation &sim)
     const bool last = stop || !(sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
-    if (last || (sim.output.interval > 0 && sim.step % sim.output.interval == 0)) {
+    if (last || sim.phases.switched || (sim.output.interval > 0 && sim.step % sim.output.interval == 0)) { // (and the state a phase ended with)
       PetscCall(PetscLogStagePush(sim.stage_output));
       if (sim.HasParticles()) PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
       PetscCall(WriteAllOutput(sim, last));

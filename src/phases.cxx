@@ -155,6 +155,7 @@ PetscErrorCode SwitchTo(Simulation &sim, RunPhase to, const std::string &why)
   Phases        &ph   = sim.phases;
   const RunPhase from = ph.Current();
   PetscFunctionBeginUser;
+  ph.switched = true;
   PetscCall(PetscPrintf(sim.comm, "Phase %s -> %s at step %" PetscInt_FMT ", t = %g s: %s\n", RunPhaseName(from), RunPhaseName(to), sim.step, (double)sim.time, why.c_str()));
   if (from == RunPhase::HeatUp) PetscCall(FinishMeasurement(sim));
   while (ph.Current() != to) ph.current += 1;
@@ -302,7 +303,8 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
 {
   Phases &ph = sim.phases;
   PetscFunctionBeginUser;
-  *stop = PETSC_FALSE;
+  *stop       = PETSC_FALSE;
+  ph.switched = false;
   if (!ph.Enabled()) PetscFunctionReturn(PETSC_SUCCESS);
   if (ph.Current() == RunPhase::Mechanics) {
     const PetscReal began = ph.switch_time[(int)RunPhase::Mechanics];

@@ -57,7 +57,8 @@ struct Phases {
   PetscReal window_length    = 0;  // s measured so far
   PetscReal switch_time[3]   = {-1, -1, -1}; // s: when heatup, heat_only, mechanics began (-1: not yet)
   PetscReal surface_heat_rate = 0; // W (per metre of depth in 2-D): sum_p G_p (T_f - T_p) at the window's end
-  PetscReal hottest_ignition = 0;  // K: the ignition material's hottest particle, last check
+  PetscReal hottest_ignition = 0;  // K: the criterion's temperature at the last check (particle or cell)
+  bool      switched = false;      // this step ended a phase (the driver writes an output then)
 
   PetscReal mechanics_sound_speed_knob = 0; // the gas's own k, restored for mechanics
   PetscBool semi_implicit_gas = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one

@@ -23,6 +23,9 @@ src/coupling/surface_heat.cxx).
                 its tolerance); then a restart from the
                 heat_only checkpoint with another ignition temperature (312 K,
                 -restart_allow_option_change) ignites later, as it must
+  heatup_budget the fire scene's heat-up at 5 mm cells for 0.03 s: the energy the gas carries in
+                through the open faces, the heat into the solids and the gases' change close
+                (residual under 1e-3 of the heat into the solids; mass to 1e-12)
   correlation   the container in a uniform 10 m/s crossflow of 1800 K air (the whole floor an
                 inlet) for 0.1 s: the mean heat transfer coefficient sum_p G_p (T_f - T_p) /
                 (pi R_o (T_f - T_s)) against Churchill-Bernstein's for the Reynolds number at the
@@ -207,6 +210,20 @@ def parallel(args):
     finish("verify_fire_parallel", failures)
 
 
+def heatup_budget(args):
+    failures = []
+    extra = ["-grid_cells", "20,80", "-phases", "heatup", "-phase_heatup_end_time", "0.03", "-phase_flux_window", "0.01", "-output_interval", "0"]
+    with tempfile.TemporaryDirectory() as out:
+        s, _ = run(args.burst, SCENE, out, extra)
+    e = s["budget"]["energy"]
+    gas_change = e["gas_internal"] + e["gas_kinetic"] - e["initial"]
+    print(f"fire heat-up, 5 mm cells, 0.03 s: energy through the open faces {-e['open_faces']:.4f} J/m in (their work {e['open_face_work']:.4f} J/m), "
+          f"into the solids {e['heat_to_particles']:.4f} J/m, the gases' change {gas_change:.4f} J/m; residual {e['residual']:.3e} J/m")
+    check("heat-up energy residual over the heat into the solids", abs(e["residual"]) / e["heat_to_particles"], 1e-3, failures)
+    check("heat-up mass budget error", abs(s["budget"]["mass"]["error"]), 1e-12, failures)
+    finish("verify_fire_heatup_budget", failures)
+
+
 def air_properties(T):
     mu = 1.716e-5 * (T / 273.15) ** 1.5 * (273.15 + 110.4) / (T + 110.4)  # Sutherland
     k = 0.0241 * (T / 273.15) ** 0.81
@@ -255,11 +272,12 @@ def main():
     c.add_argument("--time", type=float, default=30.0)
     c.add_argument("--band", type=float, default=2.5e-3, help="the charge's outer band compared (m)")
     sub.add_parser("parallel")
+    sub.add_parser("heatup_budget")
     r = sub.add_parser("correlation")
     r.add_argument("--cells", default="40,160")
     r.add_argument("--time", type=float, default=0.1)
     args = ap.parse_args()
-    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "correlation": correlation}[args.what](args)
+    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "heatup_budget": heatup_budget, "correlation": correlation}[args.what](args)
 
 
 if __name__ == "__main__":
