@@ -113,7 +113,7 @@ def main():
     sc = ax[0].scatter(xs, ys, c=p["temperature"].ravel(), s=2, cmap="coolwarm", vmin=300, vmax=max(320, float(p["temperature"].max())))
     ax[0].set_title(f"heat-up, t = {step_time.get(step_of(g_heat), 0):.3g} s")
     fig.colorbar(im, ax=ax[0], label="gas temperature [K]", fraction=0.08, pad=0.02)
-    fig.colorbar(sc, ax=ax[0], label="particle temperature [K]", fraction=0.08, pad=0.12)
+    fig.colorbar(sc, ax=ax[0], label="particle temperature [K]", fraction=0.05, pad=0.08, location="bottom")
     ax[0].set_aspect("equal")
     # 2. temperature histories
     names = [c[len("temperature_max_"):] for c in rows[0] if c.startswith("temperature_max_")]

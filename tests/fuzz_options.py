@@ -273,7 +273,8 @@ def checkpoint_case(args, index, opts, kind, rng, work):
             return True, "the other run's checkpoints kept apart; -restart on the folder continues the second run"
         expect, what = r"^$", "a restart of the second run"
     else:  # option_change
-        physics = [i for i, (n, v) in enumerate(opts) if NUMBER.match(v) and not RUN_CONTROL.match(n) and float(v) != 0]
+        # (integer-valued options are counts or choices, -dim, -grid_cells: 1.5 times one is no valid input)
+        physics = [i for i, (n, v) in enumerate(opts) if NUMBER.match(v) and not RUN_CONTROL.match(n) and float(v) != 0 and not re.fullmatch(r"[+-]?\d+", v)]
         if not physics:
             return True, "no numeric physics option (skipped)"
         i = rng.choice(physics)
