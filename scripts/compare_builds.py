@@ -33,7 +33,7 @@ SHORT2D = "-grid_cells 32,32 -max_steps 40 -output_interval 20"
 RUNS = [  # name, ranks, options
     ("exploding_cylinder2d", 1, "-options_file options/scenes/exploding_cylinder2d.opts -grid_cells 40,40 -max_steps 60 -output_interval 30"),
     ("exploding_cylinder2d_2ranks", 2, "-options_file options/scenes/exploding_cylinder2d.opts -grid_cells 40,40 -max_steps 60 -output_interval 30"),
-    ("exploding_cylinder2d_viscoscram", 2, "-options_file options/scenes/exploding_cylinder2d_viscoscram.opts -grid_cells 40,40 -max_steps 60 -output_interval 30"),
+    ("exploding_cylinder2d_elastic", 2, "-options_file options/scenes/exploding_cylinder2d_elastic.opts -grid_cells 40,40 -max_steps 60 -output_interval 30"),
     ("exploding_cylinder2d_hy100", 1, "-options_file options/scenes/exploding_cylinder2d_hy100.opts -grid_cells 40,40 -max_steps 40 -output_interval 20"),
     ("exploding_cylinder3d", 2, "-options_file options/scenes/exploding_cylinder3d.opts -grid_cells 16,16,8 -max_steps 10 -output_interval 5"),
     ("cylinder2d_4340", 2, "-options_file options/scenes/cylinder2d_4340.opts " + SHORT2D),
