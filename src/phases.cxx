@@ -6,6 +6,7 @@
 #include "ice/ice.hpp"
 #include "io/checkpoint.hpp"
 #include "mpm/swarm_access.hpp"
+#include "../models/burn/thermal_decomposition.hpp"
 #include "util.hpp"
 #include <cmath>
 #include <cstring>
@@ -79,6 +80,71 @@ PetscErrorCode HottestParticle(Simulation &sim, PetscInt material, PetscReal *T_
   PetscCallMPI(MPI_Bcast(where, 4, MPIU_REAL, global.rank, sim.comm));
   *T_max = global.value;
   *id    = (PetscInt64)where[3];
+  for (int d = 0; d < 3; ++d) x[d] = where[d];
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The ignition material's particles decompose over the step just taken (sim.dt) at their own
+// temperature, the reaction heat kept (operator split after the step's conduction). Where the rate
+// Z exp(-T_a/T) dt is below 1e-10 the reacted fraction grows by it explicitly; else CVODE.
+PetscErrorCode AdvanceKinetics(Simulation &sim)
+{
+  Phases               &ph = sim.phases;
+  ThermalDecomposition &k  = *ph.kinetics;
+  PetscInt              n;
+  PetscReal            *T, *lambda;
+  const PetscInt       *mat;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(field::reacted_fraction, &lambda));
+  PetscCall(fields.Get(field::material, &mat));
+  for (PetscInt p = 0; p < n; ++p) {
+    if (mat[p] != ph.ignition_material) continue;
+    const PetscReal rate = k.par.Z * std::exp(-k.par.T_a / T[p]) * sim.dt;
+    if (rate < 1e-10) lambda[p] += (1 - lambda[p]) * rate;
+    else PetscCall(k.Advance(sim.dt, &lambda[p], &T[p]));
+  }
+  PetscCall(fields.RestoreAll());
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The ignition material's most decomposed particle (global): its reacted fraction, id and position.
+PetscErrorCode MostReacted(Simulation &sim, PetscReal *most, PetscInt64 *id, PetscReal x[3])
+{
+  PetscInt          n;
+  const PetscReal  *lambda, *coor;
+  const PetscInt   *mat;
+  const PetscInt64 *pid;
+  const PetscInt    dim = sim.grid.dim;
+  struct {
+    PetscReal   value;
+    PetscMPIInt rank;
+  } local = {-1, sim.rank}, global;
+  PetscInt best = -1;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.swarm);
+  PetscCall(fields.Get(field::reacted_fraction, &lambda));
+  PetscCall(fields.Get(field::material, &mat));
+  PetscCall(fields.Get(DMSwarmPICField_coor, &coor));
+  PetscCall(fields.Get(DMSwarmField_pid, &pid));
+  for (PetscInt p = 0; p < n; ++p)
+    if (mat[p] == sim.phases.ignition_material && lambda[p] > local.value) {
+      local.value = lambda[p];
+      best        = p;
+    }
+  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
+  PetscReal where[4] = {0, 0, 0, 0};
+  if (sim.rank == global.rank && best >= 0) {
+    for (PetscInt d = 0; d < dim; ++d) where[d] = coor[best * dim + d];
+    where[3] = (PetscReal)pid[best];
+  }
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Bcast(where, 4, MPIU_REAL, global.rank, sim.comm));
+  *most = global.value;
+  *id   = (PetscInt64)where[3];
   for (int d = 0; d < 3; ++d) x[d] = where[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -188,11 +254,13 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(PetscOptionsReal("-phase_flame_temperature", "T_f of the surface heat G_p (T_f - T_p) (K), >= 0; 0: the hottest gas at the end of the heat-up", "", ph.flame_temperature, &ph.flame_temperature, nullptr));
   PetscCall(PetscOptionsReal("-phase_ignition_temperature", "The run goes to mechanics once a particle of the ignition material is this hot (K), >= 0; 0: its burn model's ignition temperature", "", ph.ignition_temperature, &ph.ignition_temperature, nullptr));
   {
-    const char *const criteria[] = {"burn_model", "temperature"};
-    int               choice     = ph.ignition_by_temperature ? 1 : 0;
-    PetscCall(OptionsChoice(PetscOptionsObject, "-phase_ignition", "What ends the heat-up and heat_only: burn_model (its ignition criterion holds in a cell) or temperature (a particle of the ignition material reaches -phase_ignition_temperature)", criteria, 2, &choice, nullptr));
+    const char *const criteria[] = {"burn_model", "temperature", "kinetics"};
+    int               choice     = ph.ignition_by_temperature ? 1 : ph.ignition_by_kinetics ? 2 : 0;
+    PetscCall(OptionsChoice(PetscOptionsObject, "-phase_ignition", "What ends the heat-up and heat_only: burn_model (its ignition criterion holds in a cell), temperature (a particle of the ignition material reaches -phase_ignition_temperature) or kinetics (one of them has decomposed -phase_kinetics_fraction of its mass)", criteria, 3, &choice, nullptr));
     ph.ignition_by_temperature = (PetscBool)(choice == 1);
+    ph.ignition_by_kinetics    = (PetscBool)(choice == 2);
   }
+  PetscCall(PetscOptionsReal("-phase_kinetics_fraction", "With -phase_ignition kinetics: the reacted mass fraction of a particle that counts as ignition, in (0, 1)", "", ph.kinetics_fraction, &ph.kinetics_fraction, nullptr));
   PetscCall(PetscOptionsString("-phase_ignition_material", "The solid whose temperature decides ignition; default: the one with a burn model (-<material>_burn_type)", "", ignition, ignition, sizeof(ignition), &has_material));
   PetscCall(PetscOptionsReal("-phase_mechanics_duration", "mechanics: the run ends this long after they began (s), >= 0; 0: at -final_time (an ignition time is not known before the run)", "", ph.mechanics_duration, &ph.mechanics_duration, nullptr));
   PetscCall(PetscOptionsBool("-phase_mechanics_explicit", "mechanics: the gas pressure explicit (the exploding scenes' step; the heat-up needs -ice_pressure_solver semi_implicit for its long steps), with the sound-speed knob 1", "", ph.mechanics_explicit, &ph.mechanics_explicit, nullptr));
@@ -207,6 +275,7 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-phase_heatup_dt_max", ph.heatup_dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_heat_only_dt", ph.heat_only_dt, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_flame_temperature", ph.flame_temperature, 0, 1e6, PETSC_FALSE));
+  if (ph.ignition_by_kinetics) PetscCall(CheckRange(sim.comm, "-phase_kinetics_fraction", ph.kinetics_fraction, 0, 1, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_mechanics_duration", ph.mechanics_duration, 0, PETSC_MAX_REAL, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-phase_ignition_temperature", ph.ignition_temperature, 0, 1e6, PETSC_FALSE));
   if (has_material) {
@@ -248,6 +317,11 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   }
   PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
   if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
+  if (ph.ignition_by_kinetics && !ph.kinetics) {
+    ph.kinetics.reset(new ThermalDecomposition());
+    PetscCall(ph.kinetics->SetFromOptions(sim.comm, sim.materials[ph.ignition_material]->Name()));
+    ph.kinetics->par.h = 0; // the particle keeps its reaction heat; conduction carries it on
+  }
   PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.materials[ph.ignition_material]->Name(), model.c_str());
   ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
   ph.semi_implicit_gas          = (PetscBool)(sim.ice->pressure_solver == IcePressureSolver::SemiImplicit);
@@ -255,7 +329,8 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   PetscCall(ApplyPhase(sim));
   std::string list;
   for (RunPhase p : ph.order) list += (list.empty() ? "" : " -> ") + std::string(RunPhaseName(p));
-  if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  if (ph.ignition_by_kinetics) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle's thermal decomposition reaching %g of its mass\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.kinetics_fraction));
+  else if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
   else PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s's criterion in a cell of %s\n", list.c_str(), RunPhaseName(ph.Current()), model.c_str(), sim.materials[ph.ignition_material]->Name()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -315,7 +390,17 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   char why[512] = "";
-  if (ph.ignition_by_temperature) {
+  if (ph.ignition_by_kinetics) {
+    PetscCall(AdvanceKinetics(sim));
+    PetscReal  x[3] = {0, 0, 0}, x_hot[3];
+    PetscInt64 id = -1, id_hot;
+    PetscReal  most = 0;
+    PetscCall(MostReacted(sim, &most, &id, x));
+    PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id_hot, x_hot));
+    if (most >= ph.kinetics_fraction) {
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
+    }
+  } else if (ph.ignition_by_temperature) {
     PetscReal  x[3] = {0, 0, 0};
     PetscInt64 id    = -1;
     PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id, x));
@@ -421,5 +506,7 @@ PetscErrorCode PhasesRestore(Simulation &sim, const std::vector<PetscReal> &s)
   ph.hottest_ignition = s[8];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+void ThermalDecompositionDeleter::operator()(ThermalDecomposition *object) const { delete object; }
 
 } // namespace burst

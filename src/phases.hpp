@@ -19,18 +19,26 @@
 // cells projected from the particles), or once a particle of the ignition material
 // (-phase_ignition_material; default the solid with a burn model) reaches the ignition temperature
 // (-phase_ignition temperature; -phase_ignition_temperature, default the burn model's own: Simple
-// Burn's T_th, Steady Burn's T_ign); heatup goes to heat_only (or mechanics) at -phase_heatup_end_time. A checkpoint is written
+// Burn's T_th, Steady Burn's T_ign), or once a particle of it has reacted -phase_kinetics_fraction of
+// its mass by its own one-step thermal decomposition, integrated with CVODE after each step with the
+// reaction heat kept in the particle (-phase_ignition kinetics; models/burn/thermal_decomposition.hpp,
+// options -<material>_decomposition_*; swarm field reacted_fraction); heatup goes to heat_only (or mechanics) at -phase_heatup_end_time. A checkpoint is written
 // at each switch (-phase_checkpoint) and kept as phase_<phase>_<step>.h5 (pruning leaves it), so a
 // run can be continued from the end of the heat-up with other options (-restart FILE
 // -restart_allow_option_change).
 #pragma once
 #include "petsc_compat.hpp"
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace burst {
 
 struct Simulation;
+class ThermalDecomposition;
+struct ThermalDecompositionDeleter {
+  void operator()(ThermalDecomposition *) const;
+};
 
 enum class RunPhase { HeatUp = 0, HeatOnly = 1, Mechanics = 2 };
 inline const char *RunPhaseName(RunPhase p) { return p == RunPhase::HeatUp ? "heatup" : p == RunPhase::HeatOnly ? "heat_only" : "mechanics"; }
@@ -47,6 +55,9 @@ struct Phases {
   PetscReal ignition_temperature     = 0;     // K; 0: the burn model's
   PetscInt  ignition_material        = -1;    // material id
   PetscBool ignition_by_temperature  = PETSC_FALSE; // -phase_ignition temperature: a particle's temperature, not the burn model's cells
+  PetscBool ignition_by_kinetics     = PETSC_FALSE; // -phase_ignition kinetics: each charge particle's thermal decomposition
+  PetscReal kinetics_fraction        = 0.01;  // the reacted fraction that counts as runaway
+  std::unique_ptr<ThermalDecomposition, ThermalDecompositionDeleter> kinetics; // -<material>_decomposition_*
   PetscBool write_checkpoint         = PETSC_TRUE;
   PetscReal mechanics_duration       = 0;     // s; > 0: the run ends this long after mechanics began
   PetscBool mechanics_explicit       = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)

@@ -60,6 +60,7 @@ inline constexpr const char *ambient_pressure = "ambient_pressure"; // Pa: press
 inline constexpr const char *surface_heat        = "surface_heat";        // J: heat from the gas over the phases' window (only with -phases)
 inline constexpr const char *surface_temperature_time = "surface_temperature_time"; // K s: integral of T over that window (only with -phases)
 inline constexpr const char *surface_conductance = "surface_conductance"; // W/K: G_p of the surface heat G_p (T_f - T_p) (only with -phases)
+inline constexpr const char *reacted_fraction = "reacted_fraction";       // -: a charge particle's thermally decomposed fraction (only with -phases)
 inline constexpr const char *affine          = "affine";            // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
 } // namespace field
 

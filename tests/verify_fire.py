@@ -26,6 +26,10 @@ src/coupling/surface_heat.cxx).
   heatup_budget the fire scene's heat-up at 5 mm cells for 0.03 s: the energy the gas carries in
                 through the open faces, the heat into the solids and the gases' change close
                 (residual under 1e-3 of the heat into the solids; mass to 1e-12)
+  kinetics      -phase_ignition kinetics (each charge particle's one-step thermal decomposition, CVODE)
+                on the container in still hot air: the ignition time against the same kinetics
+                integrated here alone along the run's history of the hottest charge particle; the
+                runaway must fall within burst's ignition step
   correlation   the container in a uniform 10 m/s crossflow of 1800 K air (the whole floor an
                 inlet) for 0.1 s: the mean heat transfer coefficient sum_p G_p (T_f - T_p) /
                 (pi R_o (T_f - T_s)) against Churchill-Bernstein's for the Reynolds number at the
@@ -224,6 +228,43 @@ def heatup_budget(args):
     finish("verify_fire_heatup_budget", failures)
 
 
+def kinetics(args):
+    """-phase_ignition kinetics against the same one-step kinetics integrated alone along the run's
+    own history of the hottest charge particle (with the reaction heat on top of it)."""
+    failures = []
+    Z, Ta, Q, c, dt = 5e19, 2.652e4, 5.5e6, 996.0, 0.5
+    extra = ["-phases", "heatup,heat_only", "-phase_ignition", "kinetics", "-phase_flame_temperature", "1500", "-phase_heat_only_dt", str(dt),
+             "-coupling_surface_heat_transfer", "300", "-final_time", "2000", "-monitor_interval", "1", "-output_interval", "0"]
+    with tempfile.TemporaryDirectory() as out:
+        s, text = run(args.burst, RING, out, extra)
+        import csv
+        with open(os.path.join(out, "monitor.csv")) as f:
+            rows = list(csv.DictReader(f))
+    t = np.array([float(r["time"]) for r in rows])
+    T = np.array([float(r["temperature_max_pbx"]) for r in rows])
+    t_burst = s["phases"]["mechanics_start"]  # the ignition time (the run stops there: no mechanics)
+    # the history before the step that ran away, extended along its last heating rate
+    tt, TT = t[:-1], T[:-1]
+    slope = (TT[-1] - TT[-2]) / (tt[-1] - tt[-2])
+    lam, x, h = 0.0, 0.0, 1e-3
+    while x < t_burst + 2 * dt and lam < 0.01:
+        Tx = (np.interp(x, tt, TT) if x <= tt[-1] else TT[-1] + slope * (x - tt[-1])) + Q / c * lam
+        dl = (1 - lam) * (1 - math.exp(-Z * math.exp(-Ta / Tx) * h))
+        if dl > 1e-3:
+            h /= 4
+            continue
+        lam += dl
+        x += h
+        if dl < 1e-5:
+            h = min(1.5 * h, 1e-2)
+    print(f"fire_ring, h = 300 W/(m^2 K), heat_only steps of {dt} s: burst ignites by the kinetics at {t_burst:.4f} s "
+          f"(hottest charge particle {T[-2]:.1f} K the step before); the kinetics alone along that history reach 1 % at {x:.4f} s")
+    # burst checks at the end of each step: the runaway lies within the step that ends at t_burst
+    check("runaway before burst's ignition step ends (s)", max(0.0, x - t_burst), 1e-9, failures)
+    check("runaway within burst's ignition step (s over the step)", max(0.0, t_burst - dt - x) / dt, 1e-9, failures)
+    finish("verify_fire_kinetics", failures)
+
+
 def air_properties(T):
     mu = 1.716e-5 * (T / 273.15) ** 1.5 * (273.15 + 110.4) / (T + 110.4)  # Sutherland
     k = 0.0241 * (T / 273.15) ** 0.81
@@ -273,11 +314,12 @@ def main():
     c.add_argument("--band", type=float, default=2.5e-3, help="the charge's outer band compared (m)")
     sub.add_parser("parallel")
     sub.add_parser("heatup_budget")
+    sub.add_parser("kinetics")
     r = sub.add_parser("correlation")
     r.add_argument("--cells", default="40,160")
     r.add_argument("--time", type=float, default=0.1)
     args = ap.parse_args()
-    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "heatup_budget": heatup_budget, "correlation": correlation}[args.what](args)
+    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "heatup_budget": heatup_budget, "kinetics": kinetics, "correlation": correlation}[args.what](args)
 
 
 if __name__ == "__main__":

@@ -43,7 +43,7 @@ PetscErrorCode CreateSwarm(Simulation &sim)
   PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &sim.swarm_bytes));
   if (sim.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &sim.swarm_bytes));
   if (sim.phases.Enabled())
-    for (const char *name : {field::surface_heat, field::surface_temperature_time, field::surface_conductance}) PetscCall(RegisterSwarmField(sw, name, 1, PETSC_REAL, &sim.swarm_bytes));
+    for (const char *name : {field::surface_heat, field::surface_temperature_time, field::surface_conductance, field::reacted_fraction}) PetscCall(RegisterSwarmField(sw, name, 1, PETSC_REAL, &sim.swarm_bytes));
   if (sim.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &sim.swarm_bytes));
   PetscCall(RegisterMaterialState(sw, sim.materials, &sim.swarm_bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
