@@ -44,42 +44,43 @@ PetscErrorCode ParsePhases(MPI_Comm comm, const std::string &text, std::vector<R
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// The hottest particle of material `material` (global): its temperature, id and position.
-PetscErrorCode HottestParticle(Simulation &sim, PetscInt material, PetscReal *T_max, PetscInt64 *id, PetscReal x[3])
+// The particle of material `material` with the largest value of the swarm field `name` (global): the
+// value, its id and position.
+PetscErrorCode LargestParticle(Simulation &sim, const char name[], PetscInt material, PetscReal *largest, PetscInt64 *id, PetscReal x[3])
 {
   PetscInt          n;
-  const PetscReal  *T, *coor;
+  const PetscReal  *value, *coor;
   const PetscInt   *mat;
   const PetscInt64 *pid;
   const PetscInt    dim = sim.grid.dim;
   struct {
-    PetscReal value;
+    PetscReal   value;
     PetscMPIInt rank;
-  } local = {-1, sim.rank}, global;
+  } local = {-PETSC_MAX_REAL, sim.rank}, global;
   PetscInt best = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
   SwarmAccess fields(sim.swarm);
-  PetscCall(fields.Get(field::temperature, &T));
+  PetscCall(fields.Get(name, &value));
   PetscCall(fields.Get(field::material, &mat));
   PetscCall(fields.Get(DMSwarmPICField_coor, &coor));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
   for (PetscInt p = 0; p < n; ++p)
-    if (mat[p] == material && T[p] > local.value) {
-      local.value = T[p];
+    if (mat[p] == material && value[p] > local.value) {
+      local.value = value[p];
       best        = p;
     }
   static_assert(sizeof(PetscReal) == sizeof(double), "MPI_DOUBLE_INT below");
   PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscReal  where[4] = {0, 0, 0, 0};
+  PetscReal where[4] = {0, 0, 0, 0};
   if (sim.rank == global.rank && best >= 0) {
     for (PetscInt d = 0; d < dim; ++d) where[d] = coor[best * dim + d];
     where[3] = (PetscReal)pid[best];
   }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Bcast(where, 4, MPIU_REAL, global.rank, sim.comm));
-  *T_max = global.value;
-  *id    = (PetscInt64)where[3];
+  *largest = global.value;
+  *id      = (PetscInt64)where[3];
   for (int d = 0; d < 3; ++d) x[d] = where[d];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -110,44 +111,6 @@ PetscErrorCode AdvanceKinetics(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// The ignition material's most decomposed particle (global): its reacted fraction, id and position.
-PetscErrorCode MostReacted(Simulation &sim, PetscReal *most, PetscInt64 *id, PetscReal x[3])
-{
-  PetscInt          n;
-  const PetscReal  *lambda, *coor;
-  const PetscInt   *mat;
-  const PetscInt64 *pid;
-  const PetscInt    dim = sim.grid.dim;
-  struct {
-    PetscReal   value;
-    PetscMPIInt rank;
-  } local = {-1, sim.rank}, global;
-  PetscInt best = -1;
-  PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
-  PetscCall(fields.Get(field::reacted_fraction, &lambda));
-  PetscCall(fields.Get(field::material, &mat));
-  PetscCall(fields.Get(DMSwarmPICField_coor, &coor));
-  PetscCall(fields.Get(DMSwarmField_pid, &pid));
-  for (PetscInt p = 0; p < n; ++p)
-    if (mat[p] == sim.phases.ignition_material && lambda[p] > local.value) {
-      local.value = lambda[p];
-      best        = p;
-    }
-  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscReal where[4] = {0, 0, 0, 0};
-  if (sim.rank == global.rank && best >= 0) {
-    for (PetscInt d = 0; d < dim; ++d) where[d] = coor[best * dim + d];
-    where[3] = (PetscReal)pid[best];
-  }
-  PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Bcast(where, 4, MPIU_REAL, global.rank, sim.comm));
-  *most = global.value;
-  *id   = (PetscInt64)where[3];
-  for (int d = 0; d < 3; ++d) x[d] = where[d];
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 
 // The hottest gas (a gas filling at least half of its cell), K: the flame's temperature.
 PetscErrorCode HottestGas(Simulation &sim, PetscReal *T_max)
@@ -395,15 +358,15 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
     PetscReal  x[3] = {0, 0, 0}, x_hot[3];
     PetscInt64 id = -1, id_hot;
     PetscReal  most = 0;
-    PetscCall(MostReacted(sim, &most, &id, x));
-    PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id_hot, x_hot));
+    PetscCall(LargestParticle(sim, field::reacted_fraction, ph.ignition_material, &most, &id, x));
+    PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id_hot, x_hot));
     if (most >= ph.kinetics_fraction) {
       std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
     }
   } else if (ph.ignition_by_temperature) {
     PetscReal  x[3] = {0, 0, 0};
     PetscInt64 id    = -1;
-    PetscCall(HottestParticle(sim, ph.ignition_material, &ph.hottest_ignition, &id, x));
+    PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id, x));
     if (ph.hottest_ignition >= ph.ignition_temperature)
       std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
   } else {
