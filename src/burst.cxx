@@ -77,11 +77,28 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(PhasesSetUp(sim)); // before the swarm: the heat-up's measurement has fields of its own
   PetscCall(CreateAnalyticSolution(sim));
   PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
-  // 3. The gas, on cells of the same grid (null without -ice_materials)
+  // 3. The gas's view of the solids (the coupling's equations of state); the swarm registers the
+  //    ambient pressure that the coupling asks for
+  const Grid &g   = sim.grid;
+  const bool  gas = IceMaterialsRequested(sim.comm);
+  IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}, sim.axisymmetric == PETSC_TRUE};
+  if (!sim.materials.empty() && gas) PetscCall(CouplingSolidMaterials(sim, spec.solids));
+  // the gas grid copies the node ranges when it is created, after the start-up balance
+  PetscCheck(!gas || !g.balance || g.balance_interval == 0, sim.comm, PETSC_ERR_SUP, "Option -grid_balance_interval = %" PetscInt_FMT " is not available with gases (-ice_materials): the gas grid is balanced at start-up only; use -grid_balance_interval 0", g.balance_interval);
+  sim.grid.balance_with_gas = gas;
+  PetscCheck(sim.help || !sim.materials.empty() || gas, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
+  // 4. Particles, when the scene has solids (-grid_balance sets the node ranges from their work here)
+  if (!sim.help && !sim.materials.empty()) {
+    PetscCall(CreateSwarm(sim));
+    PetscCall(SeedParticles(sim));
+    PetscCall(ApplyAnalyticInitialCondition(sim));
+    PetscCall(MigrateParticles(sim));
+    PetscCall(ComputeInitialWaveSpeed(sim));
+    PetscCall(CheckParticleState(sim, "seeding"));
+  }
+  // 5. The gas, on cells of the same grid and the same ranks' ranges (null without -ice_materials)
   {
-    const Grid &g = sim.grid;
-    IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}, sim.axisymmetric == PETSC_TRUE};
-    if (!sim.materials.empty() && IceMaterialsRequested(sim.comm)) PetscCall(CouplingSolidMaterials(sim, spec.solids));
+    spec.nodes     = g.da_nodes; // (re-created by a start-up balance)
     IceSolver *ice = nullptr;
     PetscCall(IceCreate(sim.comm, spec, sim.help, &ice));
     sim.ice.reset(ice);
@@ -93,17 +110,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     PetscCall(PetscLogStagePop());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCheck(!sim.materials.empty() || sim.ice, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
-  // 4. Particles, when the scene has solids
-  if (!sim.materials.empty()) {
-    PetscCall(CreateSwarm(sim));
-    PetscCall(SeedParticles(sim));
-    PetscCall(ApplyAnalyticInitialCondition(sim));
-    PetscCall(MigrateParticles(sim));
-    PetscCall(ComputeInitialWaveSpeed(sim));
-    PetscCall(CheckParticleState(sim, "seeding"));
-  }
-  // 5. Gas and particles meet (src/coupling/)
+  // 6. Gas and particles meet (src/coupling/)
   if (sim.coupling) PetscCall(CouplingSetUp(sim));
   PetscCall(OutputSetUp(sim));
   PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones

@@ -132,6 +132,8 @@ struct Grid {
   PetscBool balance = PETSC_FALSE;
   PetscInt  balance_interval = 0;
   PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.002, balance_plastic_weight = 2.0;
+  PetscReal balance_gas_weight = 1.0; // work of a gas cell relative to a particle
+  bool      balance_with_gas   = false; // the scene has gases: the start-up balance counts their cells
   PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
   Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
   // Nodes that can hold mass in step `reached_step`, per ghosted local node (p2g.cxx: the P2G of the

@@ -486,7 +486,12 @@ def exploding(args):
         for name, mine, theirs in (("burnt mass", s["gas"]["burnt_mass"], t["gas"]["burnt_mass"]),
                                    ("peak pressure", s["gas"]["peak_pressure"], t["gas"]["peak_pressure"]),
                                    ("wall velocity", v[-1], w[-1])):
-            check(f"|{name} - {name} with '{args.compare_with}'| / {name} with it", abs(mine - theirs) / abs(theirs), 1e-2, failures)
+            check(f"|{name} - {name} with '{args.compare_with}'| / {name} with it", abs(mine - theirs) / abs(theirs), args.compare_tol, failures)
+        if args.expect_ranges_differ: # (-grid_balance against equal ranges: the same run on other node ranges)
+            ok = s["node_ranges"] != t["node_ranges"]
+            print(f"  node ranges {s['node_ranges']} against {t['node_ranges']} with '{args.compare_with}': {'differ, OK' if ok else 'the same, FAIL'}")
+            if not ok:
+                failures.append("the node ranges did not change")
     if args.fragments:
         n, lo, hi = s["fragment_count"], s["grady_shear"]["sector"], s["grady_tension"]["sector"]
         # the paper's own count (6-7) lies two above the band at its expansion velocity: a count more
@@ -532,6 +537,8 @@ def main():
     ex.add_argument("--cells", type=int, default=40)
     ex.add_argument("--final-time", type=float, default=3e-5)
     ex.add_argument("--compare-with", default="", help="options of a second run that must agree within 1 %% (burnt mass, peak pressure, wall velocity)")
+    ex.add_argument("--compare-tol", type=float, default=1e-2, help="relative tolerance of --compare-with")
+    ex.add_argument("--expect-ranges-differ", action="store_true", help="with --compare-with: the two runs' node ranges (summary.json) must differ")
     ex.add_argument("--ranks", type=int, default=1)
     ex.add_argument("--fragments", action="store_true", help="the full run: report the fragments")
     ex.add_argument("--extra", default="")

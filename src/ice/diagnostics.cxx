@@ -104,11 +104,8 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(ice.local, &a));
-  // the face pressure of IceSources (sources.cxx), the same expression on the same cells, and the
-  // shock viscosity that the gases (not the solids) feel there
-  auto face_pressure = [&](PetscInt L, PetscInt R) { return IceFacePressure(ice, a, L, R); };
-  const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
-  auto       face_q  = [&](PetscInt d, PetscInt R) { return viscous ? IceFaceViscosity(ice, a, d, R) : 0.0; };
+  // the face pressure of IceSources (sources.cxx), which kept it per face, and the shock viscosity
+  // that the gases (not the solids) feel there
   const PetscReal V = ice.CellVolume();
   // One pass over the owned cells for the budgets' report (not their sums): the solids' kinetic energy
   // from IceSources' -dt theta_s grad p; the gases' face work that only one side of an interior face
@@ -129,10 +126,10 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
         const PetscInt     ijk[3] = {i, j, k};
         PetscReal          p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, q_face[3][2] = {{0, 0}, {0, 0}, {0, 0}};
         for (PetscInt d = 0; d < ice.dim; ++d) {
-          p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
-          p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
-          q_face[d][0] = face_q(d, idx);
-          q_face[d][1] = face_q(d, idx + ice.lstride[d]);
+          p_face[d][0] = ice.face_pressure[d][idx];
+          p_face[d][1] = ice.face_pressure[d][idx + ice.lstride[d]];
+          q_face[d][0] = ice.face_viscosity[d][idx];
+          q_face[d][1] = ice.face_viscosity[d][idx + ice.lstride[d]];
         }
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           const bool here = booked(c, m);
@@ -193,7 +190,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
           for (PetscInt i = lo[0]; i < hi[0]; ++i) {
             const PetscInt  idx = ice.LocalIndex(i, j, k), ghost = s ? idx + ice.lstride[d] : idx - ice.lstride[d];
             const PetscInt  L = s ? idx : ghost, R = s ? ghost : idx; // the face's cells; its velocity is stored with R
-            const PetscReal p = face_pressure(L, R), q = face_q(d, R);
+            const PetscReal p = ice.face_pressure[d][R], q = ice.face_viscosity[d][R]; // (L, R)
             for (PetscInt m = 0; m < n; ++m) {
               const PetscReal theta = a[idx * S + ice.Offset(m, icef::theta)], p_felt = m < ice.ngas ? p + q : p;
               ice.boundary.impulse[d] -= outward * ice.dt * theta * p_felt * A; // -dt theta grad (p + q): the face's share

@@ -17,7 +17,9 @@ namespace {
 // sum theta(p) - 1 and its derivative for the bulk densities scale * rho_m; rho_micro is written. A gas with a cold energy keeps its
 // specific energy e[m] (so the equilibration conserves energy: gas_eos.hpp), the others their
 // temperature; cold[m] says which (e[m] unused otherwise).
-PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal scale, PetscReal p, const bool cold[], const PetscReal e[], PetscReal rho_micro[], PetscReal *dfdp)
+// point[m] (if given) keeps the equation of state at rho_micro[m] and T_m of a material without a
+// cold energy, which the derived fields reuse.
+PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal scale, PetscReal p, const bool cold[], const PetscReal e[], PetscReal rho_micro[], PetscReal *dfdp, GasEOSPoint *point = nullptr)
 {
   PetscReal sum = 0, deriv = 0;
   for (PetscInt m = 0; m < ice.nmat; ++m) {
@@ -32,7 +34,9 @@ PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal s
       const PetscReal T = c[ice.Offset(m, icef::temp)];
       rho_micro[m]      = eos.Density(p, T);
       if (!(rho_micro[m] > 0)) return NAN;
-      dp_drho = eos.Evaluate(rho_micro[m], T).dp_drho;
+      const GasEOSPoint s = eos.Evaluate(rho_micro[m], T);
+      dp_drho             = s.dp_drho;
+      if (point) point[m] = s;
     }
     const PetscReal theta = rho / rho_micro[m];
     sum += theta;
@@ -48,6 +52,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
   PetscScalar   *a;
   const PetscInt S = ice.stride, n = ice.nmat;
   PetscReal      rho_micro[kIceMaxMaterials], e[kIceMaxMaterials];
+  GasEOSPoint    point[kIceMaxMaterials];
   bool           cold[kIceMaxMaterials], any_cold = false;
   PetscFunctionBeginUser;
   for (PetscInt m = 0; m < n; ++m) {
@@ -83,6 +88,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
         rho_micro[m] = -1; // DensityAtEnergy's first guess: the stored specific volume
         if (cold[m]) e[m] = ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]);
       }
+    bool have_point = false; // point[m]: the EOS at the final rho_micro of the materials without a cold energy
     if (n == 1) { // one material fills the cell: no solve
       rho_micro[0] = c[ice.Offset(0, icef::rho)];
       if (cold[0]) c[ice.Offset(0, icef::temp)] = (e[0] - ice.materials[0].eos->ColdEnergy(rho_micro[0])) / ice.materials[0].eos->cv;
@@ -126,14 +132,14 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
           SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the equilibration pressure of cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") did not converge (Newton and bisection on [1e-6, 1e15] Pa); state:%s", ice.step, i, j, k, state.c_str());
         }
       }
-      VolumeResidual(ice, c, scale, p, cold, e, rho_micro, nullptr);
+      have_point = std::isfinite(VolumeResidual(ice, c, scale, p, cold, e, rho_micro, nullptr, point));
     }
     PetscReal sum_kappa = 0;
     for (PetscInt m = 0; m < n; ++m) {
       const GasEOS &eos = *ice.materials[m].eos;
       if (cold[m]) c[ice.Offset(m, icef::temp)] = (e[m] - eos.ColdEnergy(rho_micro[m])) / eos.cv;
       const PetscReal   T   = c[ice.Offset(m, icef::temp)];
-      const GasEOSPoint s   = eos.Evaluate(rho_micro[m], T);
+      const GasEOSPoint s   = have_point && !cold[m] ? point[m] : eos.Evaluate(rho_micro[m], T);
       const PetscReal   c2  = s.dp_drho + T * s.dp_dT * s.dp_dT / (rho_micro[m] * rho_micro[m] * eos.cv);
       const PetscReal   theta = scale * c[ice.Offset(m, icef::rho)] / rho_micro[m];
       c[ice.Offset(m, icef::theta)]  = theta;

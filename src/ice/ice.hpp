@@ -189,6 +189,9 @@ struct IceSolver {
   // Per-step face data for the local box: value of the LOWER face of each local cell, per
   // direction and material: velocity after exchange, before exchange, effective specific volume.
   std::vector<PetscReal> face_vel[3], face_vel_star[3], face_spvol[3], face_spvol_eff[3];
+  // the sources' face pressure and shock viscosity (sources.cxx), per face (local index of its upper
+  // cell), filled on the owned cells' faces each step and read again by the budget (diagnostics.cxx)
+  std::vector<PetscReal> face_pressure[3], face_viscosity[3];
   // Work arrays for advection (gradients, fluxes) and the semi-implicit solve.
   std::vector<PetscReal> work_grad, work_adv, work_outflow, work_increment, work_advect, work_pressure;
 

@@ -345,6 +345,8 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
     ice.face_vel_star[d].assign(nlocal * ice.nmat, 0);
     ice.face_spvol[d].assign(nlocal * ice.nmat, 0);
     ice.face_spvol_eff[d].assign(nlocal * ice.nmat, 0);
+    ice.face_pressure[d].assign(nlocal, 0);
+    ice.face_viscosity[d].assign(nlocal, 0);
   }
   if (ice.da_p) {
     // The pressure DMDA reads its own options under the KSP's prefix, so -ice_pressure_dm_mat_type

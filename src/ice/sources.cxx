@@ -66,8 +66,20 @@ PetscErrorCode IceSources(IceSolver &ice)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_sources, 0, 0, 0, 0));
   PetscCall(IceGetLocalArray(ice, &a));
-  auto face_pressure = [&](PetscInt L, PetscInt R) { return IceFacePressure(ice, a, L, R); };
   const bool viscous = ice.viscosity[0] > 0 || ice.viscosity[1] > 0;
+  // each face's pressure and shock viscosity once (every face of the owned cells, local index of its
+  // upper cell); IceBudgetFaces reads them again
+  for (PetscInt d = 0; d < dim; ++d) {
+    PetscReal     *p_f = ice.face_pressure[d].data(), *q_f = ice.face_viscosity[d].data();
+    const PetscInt st = ice.lstride[d];
+    for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2] + (d == 2); ++k)
+      for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1] + (d == 1); ++j)
+        for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0] + (d == 0); ++i) {
+          const PetscInt R = ice.LocalIndex(i, j, k);
+          p_f[R]           = IceFacePressure(ice, a, R - st, R);
+          q_f[R]           = viscous ? IceFaceViscosity(ice, a, d, R) : 0;
+        }
+  }
   // the cell exchange follows and gives each material the kinetic energy its drag removes
   const bool drag_settles = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -78,12 +90,12 @@ PetscErrorCode IceSources(IceSolver &ice)
         // lower, upper face of each direction: pressure, and the shock viscosity the gases feel
         PetscReal grad_p[3] = {0, 0, 0}, p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, q_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, grad_q[3] = {0, 0, 0};
         for (PetscInt d = 0; d < dim; ++d) {
-          p_face[d][0] = face_pressure(idx - ice.lstride[d], idx);
-          p_face[d][1] = face_pressure(idx, idx + ice.lstride[d]);
+          p_face[d][0] = ice.face_pressure[d][idx];
+          p_face[d][1] = ice.face_pressure[d][idx + ice.lstride[d]];
           grad_p[d]    = (p_face[d][1] - p_face[d][0]) / ice.h[d];
           if (viscous) {
-            q_face[d][0] = IceFaceViscosity(ice, a, d, idx);
-            q_face[d][1] = IceFaceViscosity(ice, a, d, idx + ice.lstride[d]);
+            q_face[d][0] = ice.face_viscosity[d][idx];
+            q_face[d][1] = ice.face_viscosity[d][idx + ice.lstride[d]];
             grad_q[d]    = (q_face[d][1] - q_face[d][0]) / ice.h[d];
           }
         }

@@ -580,6 +580,16 @@ PetscErrorCode WriteSummary(Simulation &sim)
     }
     s << "},\n";
   }
+  { // each rank slot's node count per direction (equal, or set by -grid_balance)
+    const Grid &g = sim.grid;
+    s << "  \"node_ranges\": {";
+    for (PetscInt d = 0; d < 3; ++d) {
+      s << (d ? ", " : "") << "\"" << "xyz"[d] << "\": [";
+      for (PetscMPIInt r = 0; r < g.procs[d]; ++r) s << (r ? ", " : "") << (g.start[d].size() > (size_t)r + 1 ? g.start[d][r + 1] - g.start[d][r] : 0);
+      s << "]";
+    }
+    s << "},\n";
+  }
   s << PhasesSummary(sim);
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";

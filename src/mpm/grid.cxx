@@ -182,12 +182,14 @@ PetscErrorCode CreateGrid(Simulation &sim)
   PetscCall(PetscOptionsInt("-grid_balance_interval", "With -grid_balance: steps between re-balances (new ranges, particles migrated); 0: at start-up only", "", g.balance_interval, &g.balance_interval, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_rigid_weight", "With -grid_balance: work of a rigid particle relative to a deformable one (-), in [0, 1] (no stress update)", "", g.balance_rigid_weight, &g.balance_rigid_weight, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_node_weight", "With -grid_balance: work of a grid node relative to a particle (-), >= 0 (grid update, ghost exchange)", "", g.balance_node_weight, &g.balance_node_weight, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_gas_weight", "With -grid_balance and gases (-ice_materials): work of a gas cell's step relative to a particle's (-), >= 0; the gas grid takes the balanced ranges", "", g.balance_gas_weight, &g.balance_gas_weight, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_plastic_weight", "With -grid_balance: work of a particle that yielded in the last step relative to an elastic one (-), >= 1 (its return mapping); with -grid_balance_interval the ranges follow the plastic zone", "", g.balance_plastic_weight, &g.balance_plastic_weight, nullptr));
   PetscOptionsEnd();
   PetscCheck(g.balance_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
   PetscCall(CheckRange(sim.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-grid_balance_node_weight", g.balance_node_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-grid_balance_plastic_weight", g.balance_plastic_weight, 1, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(CheckRange(sim.comm, "-grid_balance_gas_weight", g.balance_gas_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
   if (!sim.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &sim.ev_balance));
 
   if (set_h && set_cells) PetscCall(PetscPrintf(sim.comm, "Note: -grid_cell_size overrides -grid_cells\n"));
@@ -236,7 +238,8 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
   *changed = PETSC_FALSE;
   if (sim.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
   sim.stencil_cache.Invalidate(); // new ghost ranges
-  PetscCheck(!sim.ice && !sim.heat, sim.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with gases (-ice_materials) or -mpm_heat_conduction: their grids follow the node DMDA's ranges from set-up");
+  // the gas grid is created after this start-up balance and copies its ranges; conduction's before it
+  PetscCheck(!sim.ice && !sim.heat, sim.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with -mpm_heat_conduction, nor with -grid_balance_interval > 0 and gases (-ice_materials): their grids keep the node ranges they were created with");
   PetscCall(PetscLogEventBegin(sim.ev_balance, 0, 0, 0, 0));
   const PetscInt        dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};
   const PetscInt        offset[3] = {0, nc[0], nc[0] + nc[1]};
@@ -283,7 +286,12 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     for (PetscInt e = 0; e < dim; ++e)
       if (e != d) slab_nodes *= g.cells[e] + 1;
     std::vector<PetscReal> cumulative(nodes + 1, 0); // cumulative[i]: work of nodes (and their cells) < i
-    for (PetscInt i = 0; i < nodes; ++i) cumulative[i + 1] = cumulative[i] + (i < nc[d] ? total[offset[d] + i] : 0) + g.balance_node_weight * slab_nodes;
+    // and with gases, the gas cells of each slab (a cell goes with its lower node)
+    PetscReal slab_cells = 1;
+    for (PetscInt e = 0; e < dim; ++e)
+      if (e != d) slab_cells *= g.cells[e];
+    const PetscReal cell_work = g.balance_with_gas ? g.balance_gas_weight * slab_cells : 0;
+    for (PetscInt i = 0; i < nodes; ++i) cumulative[i + 1] = cumulative[i] + (i < nc[d] ? total[offset[d] + i] + cell_work : 0) + g.balance_node_weight * slab_nodes;
     PetscInt begin = 0;
     for (PetscInt r = 0; r < P - 1; ++r) {
       const PetscReal target = cumulative[nodes] * (r + 1) / P;
