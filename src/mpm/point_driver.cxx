@@ -19,7 +19,7 @@
 // -point_reverse_strain s it turns back at strain s (L becomes -L; not for the rotating path), e.g.
 // to open a failed point and close it again; the strain column then goes back down.
 // CSV columns: step, time, strain, stress, pressure, von Mises, temperature, F and the metal models'
-// state; then every other scalar field the material lists in OutputFields, by its name (e.g. crack_radius).
+// state, density and wave speed; then every other scalar field the material lists in OutputFields, by its name (e.g. crack_radius).
 #include "simulation.hpp"
 #include "options_check.hpp"
 #include "mpm/material_state.hpp"
@@ -184,7 +184,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   if (!sim.rank) {
     out = std::fopen(o.output.c_str(), "w");
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open -point_output %s", o.output.c_str());
-    std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy");
+    std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy,density,wave_speed");
   }
   // model fields written when the material has them (it declares them in OutputFields)
   const char *optional[] = {state_field::plastic_strain, state_field::plastic_strain_rate, "porosity", "damage", "flow_stress", "unstable", state_field::failed};
@@ -304,6 +304,13 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     const PetscReal q = std::sqrt(1.5 * dev.squaredNorm());
     if (out)
       std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)path_strain(step), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+    {
+      const PetscReal *mass, *volume, *wave_speed;
+      PetscCall(f.Get(field::mass, &mass));
+      PetscCall(f.Get(field::volume, &volume));
+      PetscCall(f.Get(field::wave_speed, &wave_speed));
+      if (out) std::fprintf(out, ",%.10e,%.10e", (double)(mass[0] / volume[0]), (double)wave_speed[0]);
+    }
     for (const char *name : extra) {
       const PetscReal *v;
       PetscCall(f.Get(name, &v));
