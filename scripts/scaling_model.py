@@ -127,6 +127,7 @@ EXCHANGES = [
 ]
 # Global reductions per step (on more than one rank): event (None: outside any event) and count.
 REDUCTIONS = [("MPM_TimeStep", 1), ("ICE_TimeStep", 1), ("MPM_Migrate", 1), ("Cpl_BurnParticles", 1), (None, 1)]
+SEMI_IMPLICIT = "-ice_pressure_solver semi_implicit -ice_pressure_pc_type jacobi"
 CHECKED_EVENTS = sorted({e for x in EXCHANGES for e in x[3]} | {e for e, _ in REDUCTIONS if e})
 
 
@@ -185,17 +186,27 @@ class Decomposition:
             boxes.append([(int(starts[d][idx[d]]), int(starts[d][idx[d] + 1])) for d in range(self.dim)])
         return boxes
 
-    def exchange(self, grid, width):
-        """Per rank: (messages, points received, points sent) of one BOX-stencil ghost exchange."""
+    def exchange(self, grid, width, star=False):
+        """Per rank: (messages, points received, points sent) of one ghost exchange: a BOX stencil
+        (the owned box grown by width in every direction at once), or a STAR one (grown along one
+        direction at a time: the face neighbours of the pressure matrix's MatMult)."""
         boxes = self.node_boxes if grid == "node" else self.cell_boxes
         extent = [c + 1 for c in self.cells] if grid == "node" else self.cells
-        ghost = [[(max(0, a - width), min(extent[d], b + width)) for d, (a, b) in enumerate(box)] for box in boxes]
 
-        def overlap(g, o):
-            v = 1
-            for (a, b), (c, e) in zip(g, o):
-                v *= max(0, min(b, e) - max(a, c))
-            return v
+        def grown(box, dirs):
+            return [(max(0, a - width), min(extent[d], b + width)) if d in dirs else (a, b) for d, (a, b) in enumerate(box)]
+
+        shapes = [[d] for d in range(self.dim)] if star else [list(range(self.dim))]
+        ghost = [[grown(box, dirs) for dirs in shapes] for box in boxes]
+
+        def overlap(gs, o):  # the star's arms are disjoint outside the owned box, which o does not meet
+            total = 0
+            for g in gs:
+                v = 1
+                for (a, b), (c, e) in zip(g, o):
+                    v *= max(0, min(b, e) - max(a, c))
+                total += v
+            return total
 
         out = []
         for r in range(self.size):
@@ -208,30 +219,57 @@ class Decomposition:
         return [int(np.prod([b - a for a, b in box])) for box in self.cell_boxes]
 
 
-def predict_counts(scene, cells, size, perturb=False):
+def semi_implicit_terms(solves, iterations):
+    """The semi-implicit pressure's extra exchanges and reductions in one step (pressure_implicit.cxx,
+    PETSc's CG with Jacobi, whose every message PETSc logs; hypre's own, with the default BoomerAMG
+    or PFMG, it does not): `solves` outer iterations, each one KSPSolve, `iterations` CG iterations
+    in all. CG: one MatMult per iteration and one per solve (the initial residual), two VecTDot per
+    iteration and per solve, one VecNorm per iteration and two per solve. Outside the KSP: one ICE
+    ghost exchange per outer iteration, the residual's reduction per outer iteration and one for the
+    final residual, and one for the matrix's diagonal dominance."""
+    matmults = iterations + solves
+    ksp_reductions = 2 * (iterations + solves) + (iterations + 2 * solves)
+    exchanges = [("ICE ghosts per outer iteration", "cell", "state", ["ICE_Pressure", "ICE_Ghosts"], False, solves),
+                 ("pressure MatMult", "cellp", "one", ["ICE_Pressure", "ICE_PSolve", "KSPSolve", "MatMult"], True, matmults)]
+    reductions = [("ICE_Pressure", ksp_reductions + (solves + 1) + 1), ("ICE_PSolve", ksp_reductions), ("KSPSolve", ksp_reductions),
+                  ("VecTDot", 2 * (iterations + solves)), ("VecNorm", iterations + 2 * solves)]
+    return exchanges, reductions
+
+
+def predict_counts(scene, cells, size, perturb=False, solves=0, iterations=0):
     """{event: [(messages, bytes, reductions) per rank]} for one step, plus "summary" (the stage).
-    perturb: the self-test's wrong model, one dof too many in the pressure-work exchange."""
+    perturb: the self-test's wrong model, one dof too many in the pressure-work exchange. solves,
+    iterations: the semi-implicit pressure's outer iterations and CG iterations in the step (0: explicit)."""
     dec = Decomposition(scene["dim"], cells, size)
-    dof = dofs(scene)
+    dof = dict(dofs(scene), one=1)
     if perturb:
         dof["work"] += 1
-    per = {e: [[0, 0, 0] for _ in range(size)] for e in CHECKED_EVENTS + ["summary"]}
+    exchanges = [(*x, False, 1) for x in EXCHANGES]
+    reductions = list(REDUCTIONS)
+    if solves:
+        extra_x, extra_r = semi_implicit_terms(solves, iterations)
+        exchanges += extra_x
+        reductions += extra_r
+    events = sorted({e for x in exchanges for e in x[3]} | {e for e, _ in reductions if e})
+    per = {e: [[0, 0, 0] for _ in range(size)] for e in events + ["summary"]}
     cache = {}
-    for _, grid, key, events in EXCHANGES:
-        width = scene["node_width"] if grid == "node" else 2
-        if (grid, width) not in cache:
-            cache[(grid, width)] = dec.exchange(grid, width)
-        for r, (msgs, recv, send) in enumerate(cache[(grid, width)]):
+    for _, grid, key, evs, star, times in exchanges:
+        width = 1 if grid == "cellp" else scene["node_width"] if grid == "node" else 2  # the pressure DMDA: STAR, width 1
+        tag = (grid, width, star)
+        if tag not in cache:
+            cache[tag] = dec.exchange("cell" if grid == "cellp" else grid, width, star)
+        for r, (msgs, recv, send) in enumerate(cache[tag]):
             nbytes = BYTES_PER_SCALAR * dof[key] * (recv + send)
-            for e in events + ["summary"]:
-                per[e][r][0] += msgs
-                per[e][r][1] += nbytes
+            for e in evs + ["summary"]:
+                per[e][r][0] += times * msgs
+                per[e][r][1] += times * nbytes
     if size > 1:
-        for e, n in REDUCTIONS:
+        for e, n in reductions:
             for r in range(size):
                 if e:
                     per[e][r][2] += n
-                per["summary"][r][2] += n
+                if e in (None, "MPM_TimeStep", "ICE_TimeStep", "MPM_Migrate", "Cpl_BurnParticles", "ICE_Pressure"):  # not nested in another counted one
+                    per["summary"][r][2] += n
     return per, dec
 
 
@@ -306,15 +344,21 @@ def cmd_check(args):
     cells = tuple(int(c) for c in args.grid.split(",")) if args.grid else scene["grid"]
     rows, bad = [], 0
     for n in [int(x) for x in args.ranks.split(",")]:
-        pred, dec = predict_counts(scene, cells, n, perturb=args.perturb)
-        s1, m1 = burst_run(args, n, scene_options(scene, cells, args.extra), 1)
-        s2, m2 = burst_run(args, n, scene_options(scene, cells, args.extra), 2)
+        extra = args.extra + (" " + SEMI_IMPLICIT if args.semi_implicit else "")
+        s1, m1 = burst_run(args, n, scene_options(scene, cells, extra), 1)
+        s2, m2 = burst_run(args, n, scene_options(scene, cells, extra), 2)
+        solves = iterations = 0
+        if args.semi_implicit:  # the solver's iteration counts are inputs (rank 0's log; every rank takes part)
+            solves = int(m2[0]["KSPSolve"][0] - m1[0]["KSPSolve"][0])
+            iterations = int(m2[0]["MatMult"][0] - m1[0]["MatMult"][0]) - solves
+            print(f"semi-implicit pressure in the second step: {solves} outer iterations, {iterations} CG iterations")
+        pred, dec = predict_counts(scene, cells, n, perturb=args.perturb, solves=solves, iterations=iterations)
         parts = particles_per_rank(scene, cells, dec)
         if sum(parts) != s1["particles"]:
             print(f"particles: model {sum(parts)}, burst {s1['particles']}")
             bad += 1
         for r in range(n):
-            for e in CHECKED_EVENTS + ["summary"]:
+            for e in pred:
                 a, b = m1[r].get(e, (0, 0, 0, 0, 0)), m2[r].get(e, (0, 0, 0, 0, 0))
                 for q, name in ((0, "messages"), (1, "bytes"), (2, "reductions")):
                     measured = b[2 + q] - a[2 + q]
@@ -515,6 +559,7 @@ def main():
     c.add_argument("--ranks", default="1,2,4,8")
     c.add_argument("--grid", default="", help="cells per direction (default: the scene's small grid)")
     c.add_argument("--extra", default="", help="further burst options")
+    c.add_argument("--semi-implicit", action="store_true", help=f"the semi-implicit gas pressure with CG + Jacobi ({SEMI_IMPLICIT})")
     c.add_argument("--perturb", action="store_true", help="self-test: one dof too many in the pressure-work exchange; the check must fail")
     c.add_argument("--out", default=os.path.join(ROOT, "build", "scaling_model"))
     t = sub.add_parser("times")
