@@ -28,6 +28,9 @@ Commands:
           prints these with 6 significant digits: a value under 1e6 is compared exactly, a larger one
           to its printed rounding (half a unit of the 6th digit of each of the two runs). Exits 1 on any
           mismatch. Writes --out/check.csv.
+  migration  runs --ranks ranks to --final-time (particles cross rank boundaries) and checks the
+          migration's reductions exactly given the number of migrating steps, and its messages within
+          bounds (which ranks exchange how many particles is the motion's, not the model's).
   times   calibrates the compute cost per particle-step and per cell-step (1 rank, --calibrate-grid),
           the latency and bandwidth of this machine's shared-memory MPI (a ping-pong, scripts/
           mpi_pingpong.c, built with mpicc), and compares predicted and measured stepping time per step
@@ -383,6 +386,49 @@ def cmd_check(args):
     return 1 if bad else 0
 
 
+# ---------------------------------------------------------------- migration
+MIGRATION_REDUCTIONS = 12  # per migrating step: DMSwarmMigrate's 11 (its topology set-up) and the count check (swarm.cxx)
+MIGRATION_MESSAGES_PER_NEIGHBOUR = 6  # topology, send counts and particles, each one way and back
+MIGRATION_BYTES_PER_NEIGHBOUR = 28  # topology (20) and the two counts (8), besides the particles' own bytes
+
+
+def box_neighbours(dec):
+    """Per rank, the ranks whose cell boxes touch its own (faces, edges, corners)."""
+    out = []
+    for r, br in enumerate(dec.cell_boxes):
+        out.append(sum(1 for q, bq in enumerate(dec.cell_boxes) if q != r and all(max(a, c) <= min(b, e) for (a, b), (c, e) in zip(br, bq))))
+    return out
+
+
+def cmd_migration(args):
+    """The migration's counts over a run long enough for the particles to cross rank boundaries.
+    Which steps migrate, between which ranks and how many particles is the motion's, not the
+    decomposition's: the reductions are checked exactly given the number of migrating steps M (the
+    DMSwarmMigrate count in the log), the messages as 6 per neighbour and migrating step, between
+    6 M_r (one neighbour, on the steps where rank r sends or receives) and 6 M n_r (all n_r box
+    neighbours every time)."""
+    scene = SCENES[args.scene]
+    cells = tuple(int(c) for c in args.grid.split(","))
+    summary, ev = burst_run(args, args.ranks, scene_options(scene, cells, f"-final_time {args.final_time} -max_steps 100000"), 100000)
+    steps = int(ev[0]["MPM_Migrate"][0])
+    migrations = int(ev[0].get("DMSwarmMigrate", (0,) * 5)[0])
+    dec = Decomposition(scene["dim"], cells, args.ranks)
+    nb = box_neighbours(dec)
+    bad = 0
+    print(f"{args.scene} {cells} on {args.ranks} ranks to {args.final_time} s: {steps} steps, {migrations} with a migration")
+    for r in range(args.ranks):
+        mig = ev[r]["MPM_Migrate"]
+        red_model = steps + MIGRATION_REDUCTIONS * migrations
+        exchanged = mig[2] / MIGRATION_MESSAGES_PER_NEIGHBOUR
+        ok_red = mig[4] == red_model
+        ok_msg = mig[2] % MIGRATION_MESSAGES_PER_NEIGHBOUR == 0 and exchanged <= migrations * nb[r]
+        particle_bytes = mig[3] - MIGRATION_BYTES_PER_NEIGHBOUR * exchanged
+        bad += not (ok_red and ok_msg)
+        print(f"  rank {r}: reductions {mig[4]:.0f} (model {red_model}, {'exact' if ok_red else 'MISMATCH'}), messages {mig[2]:.0f} = 6 x {exchanged:.0f} "
+              f"neighbour-steps (bound {migrations * nb[r]}: {'ok' if ok_msg else 'MISMATCH'}), bytes {mig[3]:.0f} of which particles {particle_bytes:.0f}")
+    return 1 if bad else 0
+
+
 # ---------------------------------------------------------------- times
 PARTICLE_EVENTS = ["MPM_P2G", "MPM_GridUpdate", "MPM_G2P", "MPM_Remap", "MPM_Stress", "MPM_Migrate", "MPM_TimeStep",
                    "Cpl_BurnParticles", "Cpl_PressureToPart", "Cpl_IncrementsToNode", "Cpl_HeatToParticles"]
@@ -413,10 +459,11 @@ def step_costs(events, steps, particles, cells):
     return t_part / (particles * steps), (total - t_part) / (cells * steps)
 
 
-def predict_step_time(scene, cells, size, cost_particle, cost_cell, net, part=None):
+def predict_step_time(scene, cells, size, cost_particle, cost_cell, net, part=None, migrate=False):
     """Predicted seconds per step: the slowest rank's compute, then each exchange at the pace of its
     busiest rank (alpha per message pair, bytes/beta each way), then the reductions (a tree:
-    2 ceil(log2 P) latencies each). net: dict(alpha_on, beta_on, alpha_off, beta_off, cores_per_node)."""
+    2 ceil(log2 P) latencies each). net: dict(alpha_on, beta_on, alpha_off, beta_off, cores_per_node).
+    migrate: add a migration on every step (the burst's late phase on many ranks)."""
     pred, dec = predict_counts(scene, cells, size)
     if part is None:
         part = particles_per_rank(scene, cells, dec)
@@ -436,6 +483,9 @@ def predict_step_time(scene, cells, size, cost_particle, cost_cell, net, part=No
             cache[(grid, width)] = dec.exchange(grid, width)
         t_comm += max((m / 2) * alpha + BYTES_PER_SCALAR * dof[key] * max(rv, sd) / beta for m, rv, sd in cache[(grid, width)]) if size > 1 else 0
     reductions = sum(n for _, n in REDUCTIONS) if size > 1 else 0
+    if size > 1 and migrate:  # the bound: a migration every step, with every box neighbour (particles' bytes left out)
+        reductions += MIGRATION_REDUCTIONS
+        t_comm += max(box_neighbours(dec)) * MIGRATION_MESSAGES_PER_NEIGHBOUR / 2 * alpha
     t_red = reductions * 2 * math.ceil(math.log2(size)) * alpha if size > 1 else 0.0
     return dict(total=t_compute + t_comm + t_red, compute=t_compute, compute_mean=t_mean, comm=t_comm, reductions=t_red,
                 imbalance=t_compute / t_mean if t_mean > 0 else 1.0, particles_max=max(part), particles=sum(part),
@@ -497,14 +547,14 @@ def cmd_predict(args):
     rows = []
     base = predict_step_time(scene, paper, 1, cp, cc, net)
     for n in ranks:
-        p = predict_step_time(scene, paper, n, cp, cc, net)
+        p = predict_step_time(scene, paper, n, cp, cc, net, migrate=True)
         rows.append(dict(kind="strong", ranks=n, grid="x".join(map(str, paper)), efficiency=base["total"] / (n * p["total"]), **p))
     coarse = tuple(int(c) for c in args.weak_base.split(","))
     wbase = predict_step_time(scene, coarse, 1, cp, cc, net)
     for n in ranks:
         f = n ** (1.0 / 3.0)
         g = tuple(int(round(c * f)) for c in coarse)
-        p = predict_step_time(scene, g, n, cp, cc, net)
+        p = predict_step_time(scene, g, n, cp, cc, net, migrate=True)
         # the work grows as the cells: efficiency is time per unit of work, 1 rank against n
         work = (p["particles"] * cp + np.prod(g) * cc) / (wbase["particles"] * cp + np.prod(coarse) * cc)
         rows.append(dict(kind="weak", ranks=n, grid="x".join(map(str, g)), efficiency=wbase["total"] * work / (n * p["total"]), **p))
@@ -562,6 +612,12 @@ def main():
     c.add_argument("--semi-implicit", action="store_true", help=f"the semi-implicit gas pressure with CG + Jacobi ({SEMI_IMPLICIT})")
     c.add_argument("--perturb", action="store_true", help="self-test: one dof too many in the pressure-work exchange; the check must fail")
     c.add_argument("--out", default=os.path.join(ROOT, "build", "scaling_model"))
+    g = sub.add_parser("migration")
+    g.add_argument("--burst", required=True)
+    g.add_argument("--scene", choices=SCENES, default="2d")
+    g.add_argument("--grid", default="40,40")
+    g.add_argument("--ranks", type=int, default=8)
+    g.add_argument("--final-time", type=float, default=1e-4)
     t = sub.add_parser("times")
     t.add_argument("--burst", required=True)
     t.add_argument("--scene", choices=SCENES, default="2d")
@@ -580,7 +636,7 @@ def main():
     p.add_argument("--machine", default=platform.node())
     p.add_argument("--out", default=os.path.join(ROOT, "build", "scaling_model"))
     args = ap.parse_args()
-    return {"check": cmd_check, "times": cmd_times, "predict": cmd_predict}[args.cmd](args)
+    return {"check": cmd_check, "migration": cmd_migration, "times": cmd_times, "predict": cmd_predict}[args.cmd](args)
 
 
 if __name__ == "__main__":
