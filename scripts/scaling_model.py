@@ -219,6 +219,37 @@ class Decomposition:
             out.append((sum(1 for x in recv if x) + sum(1 for x in send if x), sum(recv), sum(send)))
         return out
 
+    def pairs(self, grid, width, reach=2):
+        """Per rank, {q: (points r receives from q, points r sends to q)} of a BOX exchange, over the
+        ranks within `reach` process-grid slots (enough while each rank owns 2 or more cells per
+        direction: the prediction's many ranks; the check counts all pairs)."""
+        boxes = self.node_boxes if grid == "node" else self.cell_boxes
+        extent = [c + 1 for c in self.cells] if grid == "node" else self.cells
+        ghost = [[(max(0, a - width), min(extent[d], b + width)) for d, (a, b) in enumerate(box)] for box in boxes]
+
+        def overlap(g, o):
+            v = 1
+            for (a, b), (c, e) in zip(g, o):
+                v *= max(0, min(b, e) - max(a, c))
+            return v
+
+        m, n = self.procs[0], self.procs[1]
+        out = []
+        for r in range(self.size):
+            i, j, k = r % m, (r // m) % n, r // (m * n)
+            near = {}
+            for dk in range(-reach, reach + 1) if self.dim == 3 else [0]:
+                for dj in range(-reach, reach + 1):
+                    for di in range(-reach, reach + 1):
+                        a, b, c = i + di, j + dj, k + dk
+                        if (di or dj or dk) and 0 <= a < m and 0 <= b < n and 0 <= c < self.procs[2]:
+                            q = a + m * (b + n * c)
+                            rv, sd = overlap(ghost[r], boxes[q]), overlap(ghost[q], boxes[r])
+                            if rv or sd:
+                                near[q] = (rv, sd)
+            out.append(near)
+        return out
+
     def owned_cells(self):
         return [int(np.prod([b - a for a, b in box])) for box in self.cell_boxes]
 
@@ -461,11 +492,14 @@ def step_costs(events, steps, particles, cells):
 
 
 def predict_step_time(scene, cells, size, cost_particle, cost_cell, net, part=None, migrate=False):
-    """Predicted seconds per step: the slowest rank's compute, then each exchange at the pace of its
-    busiest rank (alpha per message pair, bytes/beta each way), then the reductions (a tree:
-    2 ceil(log2 P) latencies each). net: dict(alpha_on, beta_on, alpha_off, beta_off, cores_per_node).
-    migrate: add a migration on every step (the burst's late phase on many ranks)."""
-    pred, dec = predict_counts(scene, cells, size)
+    """Predicted seconds per step: the slowest rank's compute, then each exchange in turn (the
+    busiest rank's latencies, alpha per message pair, and its on-node bytes at beta_on each way, then
+    the busiest node's off-node bytes through its one network port at beta_off), then the reductions
+    (a tree: 2 levels per halving, those within a node at alpha_on, the others at alpha_off).
+    Ranks fill nodes in order (rank // cores_per_node). net: dict(alpha_on, beta_on, alpha_off,
+    beta_off, cores_per_node). migrate: add a migration on every step (the burst's late phase on many
+    ranks: 12 reductions and 6 messages per box neighbour; the particles' bytes left out)."""
+    dec = Decomposition(scene["dim"], cells, size)
     if part is None:
         part = particles_per_rank(scene, cells, dec)
     owned = dec.owned_cells()
@@ -473,21 +507,35 @@ def predict_step_time(scene, cells, size, cost_particle, cost_cell, net, part=No
     t_compute = max(compute)
     t_mean = sum(compute) / size
     dof = dofs(scene)
-    multinode = size > net["cores_per_node"]
-    alpha = net["alpha_off"] if multinode else net["alpha_on"]
-    beta = net["beta_off"] if multinode else net["beta_on"]
+    cpn = net["cores_per_node"]
+    node_of = [r // cpn for r in range(size)]
+    nodes = node_of[-1] + 1
     t_comm = 0.0
     cache = {}
-    for _, grid, key, _ in EXCHANGES:
+    for _, grid, key, _ in EXCHANGES if size > 1 else []:
         width = scene["node_width"] if grid == "node" else 2
         if (grid, width) not in cache:
-            cache[(grid, width)] = dec.exchange(grid, width)
-        t_comm += max((m / 2) * alpha + BYTES_PER_SCALAR * dof[key] * max(rv, sd) / beta for m, rv, sd in cache[(grid, width)]) if size > 1 else 0
+            cache[(grid, width)] = dec.pairs(grid, width)
+        scalar = BYTES_PER_SCALAR * dof[key]
+        busiest_rank, node_bytes = 0.0, [0.0] * nodes
+        for r, near in enumerate(cache[(grid, width)]):
+            t = 0.0
+            for q, (rv, sd) in near.items():
+                msgs = (rv > 0) + (sd > 0)
+                if node_of[q] == node_of[r]:
+                    t += msgs / 2 * net["alpha_on"] + scalar * max(rv, sd) / net["beta_on"]
+                else:
+                    t += msgs / 2 * net["alpha_off"]
+                    node_bytes[node_of[r]] += scalar * sd
+            busiest_rank = max(busiest_rank, t)
+        t_comm += busiest_rank + max(node_bytes) / net["beta_off"]
     reductions = sum(n for _, n in REDUCTIONS) if size > 1 else 0
-    if size > 1 and migrate:  # the bound: a migration every step, with every box neighbour (particles' bytes left out)
+    if size > 1 and migrate:
         reductions += MIGRATION_REDUCTIONS
-        t_comm += max(box_neighbours(dec)) * MIGRATION_MESSAGES_PER_NEIGHBOUR / 2 * alpha
-    t_red = reductions * 2 * math.ceil(math.log2(size)) * alpha if size > 1 else 0.0
+        t_comm += max(box_neighbours(dec)) * MIGRATION_MESSAGES_PER_NEIGHBOUR / 2 * (net["alpha_off"] if nodes > 1 else net["alpha_on"])
+    levels = math.ceil(math.log2(size)) if size > 1 else 0
+    levels_on = min(levels, math.ceil(math.log2(min(size, cpn)))) if size > 1 else 0
+    t_red = reductions * 2 * (levels_on * net["alpha_on"] + (levels - levels_on) * net["alpha_off"])
     return dict(total=t_compute + t_comm + t_red, compute=t_compute, compute_mean=t_mean, comm=t_comm, reductions=t_red,
                 imbalance=t_compute / t_mean if t_mean > 0 else 1.0, particles_max=max(part), particles=sum(part),
                 procs="x".join(map(str, dec.procs[:scene["dim"]])))
