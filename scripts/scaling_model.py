@@ -573,7 +573,7 @@ def cmd_times(args):
             measured = min(measured, max(ev[r]["summary"][1] for r in ev) / steps)
         p = predict_step_time(scene, cells, n, cp, cc, net)
         err = p["total"] / measured - 1
-        rows.append(dict(scene=args.scene, grid="x".join(map(str, cells)), ranks=n, steps=steps, measured_s_per_step=measured, predicted_s_per_step=p["total"],
+        rows.append(dict(scene=args.scene, grid="x".join(map(str, cells)), ranks=n, steps=steps, load_average=os.getloadavg()[0], measured_s_per_step=measured, predicted_s_per_step=p["total"],
                          error=err, compute=p["compute"], comm=p["comm"], reductions=p["reductions"], imbalance=p["imbalance"],
                          cost_particle=cp, cost_cell=cc, alpha=alpha, beta=beta))
         print(f"{args.scene} {cells} on {n} rank(s): measured {measured * 1e3:.3f} ms per step, predicted {p['total'] * 1e3:.3f} ms "
@@ -630,19 +630,21 @@ def cmd_predict(args):
         ax.semilogx([r["ranks"] for r in sel], [r["efficiency"] for r in sel], style, base=2, label=f"predicted, {kind}")
     bal = [r for r in rows if r["kind"] == "strong"]
     ax.semilogx([r["ranks"] for r in bal], [1 / r["imbalance"] for r in bal], ":", base=2, color="gray", label="strong, particle balance alone (mean/max)")
-    for f in args.measured:
+    for f, colour in zip(args.measured, ("black", "tab:red", "tab:green")):
         with open(f) as fh:
             m = list(csv.DictReader(fh))
         if len(m) >= 2:
             t1, t2 = float(m[0]["measured_s_per_step"]), float(m[1]["measured_s_per_step"])
             p1, p2 = float(m[0]["predicted_s_per_step"]), float(m[1]["predicted_s_per_step"])
-            ax.plot([1, 2], [1, t1 / (2 * t2)], "k^", label=f"measured here, {m[0]['scene']} {m[0]['grid']} (strong)")
-            ax.plot([1, 2], [1, p1 / (2 * p2)], "kx", label=f"model here, {m[0]['scene']} {m[0]['grid']}")
+            ax.plot([2], [t1 / (2 * t2)], "^", color=colour, label=f"measured on this machine, {m[0]['scene']} {m[0]['grid']} (strong, 2 ranks)")
+            ax.plot([2], [p1 / (2 * p2)], "x", color=colour, ms=9, label=f"model of the same, on this machine's figures")
+    ax.set_xticks(ranks)
+    ax.set_xticklabels([str(r) for r in ranks])
     ax.set_xlabel("ranks")
     ax.set_ylabel("parallel efficiency (time per step)")
-    ax.set_ylim(0, 1.1)
+    ax.set_ylim(0, 1.45)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="lower left")
+    ax.legend(fontsize=7, loc="upper right")
     ax.set_title(f"3-D exploding cylinder {args.paper_grid.replace(',', ' x ')} (strong); weak from {args.weak_base.replace(',', ' x ')} per rank\n"
                  f"{args.cores_per_node} cores/node, {args.latency * 1e6:.1f} us, {args.bandwidth / 1e9:.1f} GB/s between nodes", fontsize=8)
     commit = subprocess.run(["git", "-C", ROOT, "rev-parse", "--short", "HEAD"], capture_output=True, text=True).stdout.strip()
