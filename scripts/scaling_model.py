@@ -13,9 +13,12 @@ What it counts, per time step and rank, for the coupled MPM + ICE step of the ex
           messages(r) = #senders + #receivers and bytes(r) = 8 dof (points received + points sent).
   reductions: the MPM and gas time steps, the migration count, the burnt-out particle count and
           the checkpoint/signal check: 5 per step on more than one rank (PETSc counts none on one).
+  semi-implicit pressure (--semi-implicit, CG + Jacobi): the MatMult halo (STAR, width 1) and the
+          CG reductions, from the outer and CG iteration counts, which are inputs taken from the log.
   migration: DMSwarmMigrate runs only on steps where a particle changes rank (swarm.cxx); in the
           checked steps no particle crosses (they start at rest), so its messages are 0 exactly.
-          In the prediction it is an estimate (see predict), not checked.
+          Over a longer run (command migration): 12 reductions per migrating step (exact), 6
+          messages per exchanging neighbour (within bounds); the prediction charges one every step.
   compute: particles per rank (the scene's seeding rule replayed on the DMDA's cell ownership) and
           owned cells per rank.
 The DMDA decomposition is PETSc 3.18's (DMSetUp_DA_2D/3D: process grid and M/m + (M%m > i) ranges);
@@ -27,7 +30,7 @@ Commands:
           the difference (one step) of messages, message bytes and reductions with the model. PETSc
           prints these with 6 significant digits: a value under 1e6 is compared exactly, a larger one
           to its printed rounding (half a unit of the 6th digit of each of the two runs). Exits 1 on any
-          mismatch. Writes --out/check.csv.
+          mismatch. Writes --out/check_<scene>_<grid>[_semi_implicit].csv.
   migration  runs --ranks ranks to --final-time (particles cross rank boundaries) and checks the
           migration's reductions exactly given the number of migrating steps, and its messages within
           bounds (which ranks exchange how many particles is the motion's, not the model's).
@@ -35,8 +38,9 @@ Commands:
           each point the fastest of --repeats runs),
           the latency and bandwidth of this machine's shared-memory MPI (a ping-pong, scripts/
           mpi_pingpong.c, built with mpicc), and compares predicted and measured stepping time per step
-          on 1 and 2 ranks at --grid (a different grid from the calibration). Writes --out/times.csv.
-          Prints the error; never fails on time.
+          on 1 and 2 ranks at --grid (a different grid from the calibration). Times are run
+          differences (steps + 2 less 2: the first step's scatter set-up left out). Writes
+          --out/times_<scene>.csv. Prints the error; never fails on time.
   predict strong and weak scaling of the 3-D exploding cylinder from 1 to 1,024 ranks on a cluster
           (--latency, --bandwidth, --cores-per-node; the on-node figures from times.csv), with the
           particle imbalance of the box decomposition; writes --out/prediction.csv and
@@ -44,7 +48,7 @@ Commands:
 Example:
   scripts/scaling_model.py check --burst build/burst --scene 2d --ranks 1,2,4,8 --grid 40,40
   scripts/scaling_model.py times --burst build/burst --scene 3d
-  scripts/scaling_model.py predict --out build/scaling_model
+  scripts/scaling_model.py predict --times build/scaling_model/times_3d.csv --measured build/scaling_model/times_*.csv
 Units: bytes, seconds, metres. Run from anywhere; burst runs in the repository root."""
 import argparse
 import csv
@@ -629,14 +633,14 @@ def cmd_predict(args):
         sel = [r for r in rows if r["kind"] == kind]
         ax.semilogx([r["ranks"] for r in sel], [r["efficiency"] for r in sel], style, base=2, label=f"predicted, {kind}")
     bal = [r for r in rows if r["kind"] == "strong"]
-    ax.semilogx([r["ranks"] for r in bal], [1 / r["imbalance"] for r in bal], ":", base=2, color="gray", label="strong, particle balance alone (mean/max)")
+    ax.semilogx([r["ranks"] for r in bal], [1 / r["imbalance"] for r in bal], ":", base=2, color="gray", label="strong, the compute imbalance alone (mean/max over ranks)")
     for f, colour in zip(args.measured, ("black", "tab:red", "tab:green")):
         with open(f) as fh:
             m = list(csv.DictReader(fh))
         if len(m) >= 2:
             t1, t2 = float(m[0]["measured_s_per_step"]), float(m[1]["measured_s_per_step"])
             p1, p2 = float(m[0]["predicted_s_per_step"]), float(m[1]["predicted_s_per_step"])
-            ax.plot([2], [t1 / (2 * t2)], "^", color=colour, label=f"measured on this machine, {m[0]['scene']} {m[0]['grid']} (strong, 2 ranks)")
+            ax.plot([2], [t1 / (2 * t2)], "^", color=colour, label=f"measured on this machine ({args.machine}), {m[0]['scene']} {m[0]['grid']}, 2 ranks")
             ax.plot([2], [p1 / (2 * p2)], "x", color=colour, ms=9, label=f"model of the same, on this machine's figures")
     ax.set_xticks(ranks)
     ax.set_xticklabels([str(r) for r in ranks])
