@@ -38,6 +38,14 @@ public:
   // The inverse: the density at pressure p and temperature T (p > 0). Models without a closed form
   // use a safeguarded Newton-bisection; returns a negative value if no density gives p.
   virtual PetscReal Density(PetscReal p, PetscReal T) const = 0;
+  // Density(p, T) and (dP/drho)_T there, for the equilibration's Newton: a model whose inverse gives
+  // the slope for less than Evaluate costs overrides it.
+  virtual PetscReal DensityAndSlope(PetscReal p, PetscReal T, PetscReal *dp_drho) const
+  {
+    const PetscReal rho = Density(p, T);
+    *dp_drho            = rho > 0 ? Evaluate(rho, T).dp_drho : 0;
+    return rho;
+  }
   // The temperature at density rho and pressure p (initial conditions given as rho, u, p);
   // models without a thermal part return the reference temperature they were given.
   virtual PetscReal Temperature(PetscReal rho, PetscReal p) const = 0;

@@ -35,6 +35,13 @@ public:
     }
     return p > 0 ? rho0 * std::pow(p / p_ref, p_ref / K) : -1;
   }
+  // (below p_ref the slope K p/(p_ref rho) from p itself: one pow instead of two)
+  PetscReal DensityAndSlope(PetscReal p, PetscReal T, PetscReal *dp_drho) const override
+  {
+    const PetscReal rho = Density(p, T);
+    *dp_drho            = rho >= rho0 ? 0.5 * K * (1 / rho0 + rho0 / (rho * rho)) : K / rho * p / p_ref;
+    return rho;
+  }
   PetscReal Temperature(PetscReal, PetscReal) const override { return T_ref; }
 };
 

@@ -32,11 +32,15 @@ PetscReal VolumeResidual(const IceSolver &ice, const PetscScalar *c, PetscReal s
       dp_drho = eos.DpDrhoAtEnergy(rho_micro[m], (e[m] - eos.ColdEnergy(rho_micro[m])) / eos.cv);
     } else {
       const PetscReal T = c[ice.Offset(m, icef::temp)];
-      rho_micro[m]      = eos.Density(p, T);
-      if (!(rho_micro[m] > 0)) return NAN;
-      const GasEOSPoint s = eos.Evaluate(rho_micro[m], T);
-      dp_drho             = s.dp_drho;
-      if (point) point[m] = s;
+      if (point) { // the last call: the whole EOS point, for the derived fields
+        rho_micro[m] = eos.Density(p, T);
+        if (!(rho_micro[m] > 0)) return NAN;
+        point[m] = eos.Evaluate(rho_micro[m], T);
+        dp_drho  = point[m].dp_drho;
+      } else {
+        rho_micro[m] = eos.DensityAndSlope(p, T, &dp_drho);
+        if (!(rho_micro[m] > 0)) return NAN;
+      }
     }
     const PetscReal theta = rho / rho_micro[m];
     sum += theta;
