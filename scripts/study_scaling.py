@@ -14,7 +14,7 @@
           and mass (the answers must stay the same to round-off; the times are not used).
 Scenes (--scenes): cylinder (options/scenes/cylinder2d_4340.opts, the prescribed-pressure 4340
 cylinder, 2-D), taylor (tests/decks/taylor3d.opts, 3-D Taylor impact, copper on a rigid anvil),
-exploding (options/scenes/exploding_cylinder2d.opts, gas and solid; no -grid_balance).
+exploding (options/scenes/exploding_cylinder2d.opts, gas and solid; -grid_balance at start-up only).
 The launcher is a template: --launcher "srun -n {n}" or "mpiexec -n {n} --bind-to core" on a cluster;
 one rank runs without it unless --launch-one. --balance adds -grid_balance (DMDA ownership ranges from
 the particle work, grid.cxx); --extra passes further options to every run.
