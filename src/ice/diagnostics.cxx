@@ -47,20 +47,31 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
 // |u_L|^2/2) (the cells' view of the solids too), between the sources and the advection.
 static PetscReal LagrangianEnergy(const IceSolver &ice, const PetscScalar *a)
 {
-  PetscReal sum = 0;
+  PetscReal      sum = 0, cv[kIceMaxMaterials];
+  bool           cold[kIceMaxMaterials]; // IceSources leaves e_cold,L / c_v in energy_L
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt m = 0; m < ice.nmat; ++m) {
+    cv[m]   = ice.materials[m].eos->cv;
+    cold[m] = !ice.materials[m].solid && ice.materials[m].eos->HasColdEnergy();
+  }
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt m = 0; m < ice.nmat; ++m) {
-          const GasEOS &eos = *ice.materials[m].eos;
-          PetscReal     uL2 = 0;
+          PetscReal uL2 = 0;
           for (PetscInt d = 0; d < ice.dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
-          const bool cold = !ice.materials[m].solid && eos.HasColdEnergy(); // IceSources leaves e_cold,L / c_v in energy_L
-          sum += ice.CellVolume() * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (c[ice.Offset(m, icef::temp_L)] + (cold ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2);
+          sum += V * c[ice.Offset(m, icef::rho_L)] * (cv[m] * (c[ice.Offset(m, icef::temp_L)] + (cold[m] ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2);
         }
       }
   return sum;
+}
+
+// e(rho_micro, T) = c_v T + e_cold(rho_micro) of gas m in cell c (c_v T alone, exactly, without a cold energy)
+static inline PetscReal CellInternalEnergy(const IceSolver &ice, const PetscScalar *c, PetscInt m, bool cold)
+{
+  const GasEOS &eos = *ice.materials[m].eos;
+  return cold ? eos.InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]) : eos.cv * c[ice.Offset(m, icef::temp)];
 }
 
 PetscErrorCode IceBudgetAfterExchange(IceSolver &ice)
@@ -82,6 +93,9 @@ PetscErrorCode IceBudgetStepStart(IceSolver &ice)
   PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(ice.local, &a));
   ice.gas_energy_mark = 0;
+  bool            cold[kIceMaxMaterials];
+  const PetscReal V = ice.CellVolume();
+  for (PetscInt m = 0; m < ice.ngas; ++m) cold[m] = ice.materials[m].eos->HasColdEnergy();
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -89,7 +103,7 @@ PetscErrorCode IceBudgetStepStart(IceSolver &ice)
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           PetscReal u2 = 0;
           for (PetscInt d = 0; d < ice.dim; ++d) u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
-          ice.gas_energy_mark += ice.CellVolume() * c[ice.Offset(m, icef::rho)] * (ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]) + 0.5 * u2);
+          ice.gas_energy_mark += V * c[ice.Offset(m, icef::rho)] * (CellInternalEnergy(ice, c, m, cold[m]) + 0.5 * u2);
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
@@ -236,6 +250,8 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
   // there); the conservative remap changes it by round-off, its dual-energy fallbacks and trace resets
   // by what they replace
   PetscReal change = out;
+  bool      cold[kIceMaxMaterials];
+  for (PetscInt m = 0; m < ice.ngas; ++m) cold[m] = ice.materials[m].eos->HasColdEnergy();
   PetscCall(VecGetArrayRead(ice.local, &a));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
@@ -249,9 +265,9 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
             uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
           }
           // energy_L: the advected (T_L + e_cold,L/c_v + |u_L|^2/(2 c_v)) with total energy, else e_cold,L/c_v (sources.cxx)
-          const PetscReal E_L = total ? eos.cv * c[ice.Offset(m, icef::energy_L)] : eos.cv * (c[ice.Offset(m, icef::temp_L)] + (eos.HasColdEnergy() ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2;
+          const PetscReal E_L = total ? eos.cv * c[ice.Offset(m, icef::energy_L)] : eos.cv * (c[ice.Offset(m, icef::temp_L)] + (cold[m] ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2;
           change -= V * c[ice.Offset(m, icef::rho_L)] * E_L;
-          change += V * c[ice.Offset(m, icef::rho)] * (eos.InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]) + 0.5 * u2);
+          change += V * c[ice.Offset(m, icef::rho)] * (CellInternalEnergy(ice, c, m, cold[m]) + 0.5 * u2);
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
