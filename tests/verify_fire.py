@@ -10,11 +10,12 @@ src/coupling/surface_heat.cxx).
                 within 1e-6
   conduction    the same container, then heat_only for 30 s with the measured conductances: the
                 steel's mean temperature and the charge's outer 2.5 mm against a 1-D radial
-                finite-volume solution of steel on PBX 9501 (perfect contact) with the same
-                h_eff (T_f - T(R_o)) at R_o, integrated here, at 1.25 and 0.625 mm cells: order at
-                least 0.8 (the grid conduction has no interface treatment between the two: measured
-                6.3/3.7/1.6 % and 38/22/10 % of the rise at 2.5/1.25/0.625 mm), errors at 0.625 mm
-                under 3 % and 15 %; the conductance the heat-up measured equals
+                finite-volume solution of steel on PBX 9501 (perfect contact) with the heat put in
+                where the heat-up put it (each particle's G_p at its radius), integrated here and
+                read at the particles' radii, at 2.5/1.25/0.625 mm cells: the errors fall with every
+                refinement and stay under 4.5 % and 20 % at the scene's 2.5 mm, 2 % and 10 % at
+                0.625 mm (measured 2.9/2.2/1.3 % and 14/12/7.1 %, with the laminate conductivity of
+                the shared cells); the conductance the heat-up measured equals
                 -coupling_surface_heat_transfer to 1 %
   parallel      the fire scene's short form through heatup -> heat_only -> mechanics (ignition
                 lowered to 310 K to reach it in seconds) on 1 and 2 ranks: the switch lines (steps,
@@ -27,9 +28,17 @@ src/coupling/surface_heat.cxx).
                 through the open faces, the heat into the solids and the gases' change close
                 (residual under 1e-3 of the heat into the solids; mass to 1e-12)
   kinetics      -phase_ignition kinetics (each charge particle's one-step thermal decomposition, CVODE)
-                on the container in still hot air: the ignition time against the same kinetics
-                integrated here alone along the run's history of the hottest charge particle; the
-                runaway must fall within burst's ignition step
+                on the container in still hot air, 0.1 s heat_only steps, an output every step: the
+                igniting particle's decomposed fraction replayed here step by step through the same
+                kinetics from burst's temperature (split as burst splits it: the step's conduction,
+                then the decomposition with its reaction heat) equals burst's to 1e-3 (measured
+                2e-4; a rate 10 % off gives 5e-2), and the replay reaches 1 % in burst's ignition
+                step
+  scene         options/scenes/pool_fire2d.opts from cold to fragments on 2 ranks (label long): the
+                phases switch in order (heatup, heat_only, mechanics), the charge ignites and burns,
+                the wall fails and breaks, the energy budget closes within 2 % of the chemical
+                energy and the mass to 1e-10; prints the wall time of each phase and of the whole
+                run (reported, never a pass or fail)
   correlation   the container in a uniform 10 m/s crossflow of 1800 K air (the whole floor an
                 inlet) for 0.1 s: the mean heat transfer coefficient sum_p G_p (T_f - T_p) /
                 (pi R_o (T_f - T_s)) against Churchill-Bernstein's for the Reynolds number at the
@@ -39,6 +48,7 @@ src/coupling/surface_heat.cxx).
 import argparse
 import json
 import math
+import re
 import os
 import subprocess
 import sys
@@ -74,7 +84,7 @@ def last_particles(out):
     with h5py.File(os.path.join(out, files[-1]), "r") as f:
         g = f["particles"]
         order = np.argsort(g["id"][...].ravel())
-        return {k: g[k][...][order] for k in ("id", "coordinates", "temperature", "mass", "material")}
+        return {k: g[k][...][order] for k in ("id", "coordinates", "temperature", "mass", "material", "surface_conductance") if k in g}
 
 
 def heat_capacity(p):
@@ -108,9 +118,11 @@ def surface_heat(args):
     finish("verify_fire_surface_heat", failures)
 
 
-def radial_solution(h_eff, Tf, T0, t_end, n_steel=40, n_pbx=400):
+def radial_solution(h_eff, Tf, T0, t_end, n_steel=40, n_pbx=400, source=None):
     """1-D radial finite volumes, steel on PBX (perfect contact), h_eff (Tf - T(R_o)) at R_o,
-    backward Euler with small steps. Returns (radii of the cell centres, T, material 0/1)."""
+    backward Euler with small steps. source = (radii, conductances per radian): the heat
+    G (Tf - T) enters the cells holding those radii instead. Returns (radii of the cell centres, T,
+    material 0/1, volumes per radian)."""
     edges = np.concatenate([np.linspace(0, R_IN, n_pbx + 1), np.linspace(R_IN, R_OUT, n_steel + 1)[1:]])
     r = 0.5 * (edges[1:] + edges[:-1])
     mat = (r > R_IN).astype(int)
@@ -132,11 +144,15 @@ def radial_solution(h_eff, Tf, T0, t_end, n_steel=40, n_pbx=400):
         A[i + 1, i + 1] += cond[i]
         A[i, i + 1] -= cond[i]
         A[i + 1, i] -= cond[i]
-    A[n - 1, n - 1] += h_eff * R_OUT
+    G = np.zeros(n)
+    if source is None:
+        G[-1] = h_eff * R_OUT
+    else:
+        np.add.at(G, np.clip(np.searchsorted(edges, source[0]) - 1, 0, n - 1), source[1])
+    A[np.diag_indices(n)] += G
     inv = np.linalg.inv(A)
     for _ in range(int(round(t_end / dt))):
-        b = rc * vol / dt * T
-        b[-1] += h_eff * R_OUT * Tf
+        b = rc * vol / dt * T + G * Tf
         T = inv @ b
     return r, T, mat, vol
 
@@ -155,13 +171,18 @@ def conduction_errors(args, cells, Tf, T0, t_end):
     steel = p["material"].ravel() == 0
     # the conductance the heat-up measured: the rate at its end over (T_f - the solids' temperature then)
     h_eff = ph["surface_heat_rate"] / (math.pi * R_OUT * (Tf - T0))
-    rr, Te, mat, vol = radial_solution(h_eff, Tf, T0, t_end - ph["heat_only_start"])
+    # the heat enters where the heat-up put it, each particle's G_p (a half ring: pi radians); the
+    # heat-up's own placement is verify_fire_surface_heat's
+    G = p["surface_conductance"].ravel()
+    rr, Te, mat, vol = radial_solution(h_eff, Tf, T0, t_end - ph["heat_only_start"], source=(r[G > 0], G[G > 0] / math.pi))
+    # the radial solution at each particle's radius, weighted as the particles are: the means then
+    # compare the same points (the charge's profile changes over the band's 2.7 mm diffusion length)
+    T_at = np.interp(r, rr, Te)
     steel_mean = float(np.sum(m[steel] * T[steel]) / np.sum(m[steel]))
-    steel_exact = float(np.sum((vol * Te)[mat == 1]) / np.sum(vol[mat == 1]))
+    steel_exact = float(np.sum(m[steel] * T_at[steel]) / np.sum(m[steel]))
     band = (~steel) & (r > R_IN - args.band)
     pbx_band = float(np.sum(m[band] * T[band]) / np.sum(m[band]))
-    sel = (mat == 0) & (rr > R_IN - args.band)
-    pbx_exact = float(np.sum((vol * Te)[sel]) / np.sum(vol[sel]))
+    pbx_exact = float(np.sum(m[band] * T_at[band]) / np.sum(m[band]))
     print(f"  {cells:>8} cells: h_eff {h_eff:.3f} W/(m^2 K); steel mean {steel_mean:.4f} K (radial solution {steel_exact:.4f} K); "
           f"PBX within {args.band * 1e3:g} mm of the steel {pbx_band:.4f} K ({pbx_exact:.4f} K)")
     return h_eff, abs(steel_mean - steel_exact) / (steel_exact - T0), abs(pbx_band - pbx_exact) / (pbx_exact - T0)
@@ -176,13 +197,17 @@ def conduction(args):
     for (c, (h_eff, e_steel, e_pbx)) in zip(levels, results):
         print(f"  {c:>8} cells: steel mean rise error {e_steel:.4f}, charge band rise error {e_pbx:.4f}")
     check("heat-up's conductance against -coupling_surface_heat_transfer (relative)", abs(results[-1][0] - 30) / 30, 1e-2, failures)
-    # the grid conduction has no interface treatment between steel and charge: first order there
+    # the laminate conductivity of the cells steel and charge share (tests/verify_heat.py interface
+    # measures its order alone, first); here with the curved contact and the heat's own placement
     for k, name in ((1, "steel mean"), (2, "charge band")):
         order = math.log(results[0][k] / results[-1][k]) / math.log(2 ** (len(levels) - 1))
         print(f"  {name}: observed order {order:.2f}")
-        check(f"{name} rise: observed order at least 0.8 (0.8/order)", 0.8 / max(order, 1e-12), 1.0, failures)
+        errors = [r[k] for r in results]
+        check(f"{name} rise error falls with every refinement (largest ratio of a level to the one before)", max(b / a for a, b in zip(errors, errors[1:])), 1.0, failures)
     check("steel mean rise error at the finest grid", results[-1][1], args.steel_bound, failures)
     check("charge band rise error at the finest grid", results[-1][2], args.pbx_bound, failures)
+    check("steel mean rise error at the coarsest grid", results[0][1], args.steel_bound_coarse, failures)
+    check("charge band rise error at the coarsest grid", results[0][2], args.pbx_bound_coarse, failures)
     finish("verify_fire_conduction", failures)
 
 
@@ -229,40 +254,95 @@ def heatup_budget(args):
 
 
 def kinetics(args):
-    """-phase_ignition kinetics against the same one-step kinetics integrated alone along the run's
-    own history of the hottest charge particle (with the reaction heat on top of it)."""
+    """-phase_ignition kinetics against the same one-step kinetics integrated here along the
+    igniting particle's own temperature history, split as burst splits it: each step's conduction,
+    then the decomposition over the step at the temperature it left, plus the reaction heat."""
     failures = []
-    Z, Ta, Q, c, dt = 5e19, 2.652e4, 5.5e6, 996.0, 0.5
+    Z, Ta, Q, c, dt = 5e19, 2.652e4, 5.5e6, 996.0, 0.1
     extra = ["-phases", "heatup,heat_only", "-phase_ignition", "kinetics", "-phase_flame_temperature", "1500", "-phase_heat_only_dt", str(dt),
-             "-coupling_surface_heat_transfer", "300", "-final_time", "2000", "-monitor_interval", "1", "-output_interval", "0"]
+             "-coupling_surface_heat_transfer", "300", "-final_time", "2000", "-output_interval", "1"]
     with tempfile.TemporaryDirectory() as out:
         s, text = run(args.burst, RING, out, extra)
-        import csv
-        with open(os.path.join(out, "monitor.csv")) as f:
-            rows = list(csv.DictReader(f))
-    t = np.array([float(r["time"]) for r in rows])
-    T = np.array([float(r["temperature_max_pbx"]) for r in rows])
+        which = int(re.search(r"ignition: pbx particle (\d+)", text).group(1))
+        times, temps, lams = [], [], []
+        for name in sorted(f for f in os.listdir(out) if f.startswith("particles_") and f.endswith(".h5")):
+            with h5py.File(os.path.join(out, name), "r") as f:
+                g = f["particles"]
+                at = np.nonzero(g["id"][...].ravel() == which)[0][0]
+                times.append(float(g.attrs["time"]))
+                temps.append(float(g["temperature"][...].ravel()[at]))
+                lams.append(float(g["reacted_fraction"][...].ravel()[at]))
     t_burst = s["phases"]["mechanics_start"]  # the ignition time (the run stops there: no mechanics)
-    # the history before the step that ran away, extended along its last heating rate
-    tt, TT = t[:-1], T[:-1]
-    slope = (TT[-1] - TT[-2]) / (tt[-1] - tt[-2])
-    lam, x, h = 0.0, 0.0, 1e-3
-    while x < t_burst + 2 * dt and lam < 0.01:
-        Tx = (np.interp(x, tt, TT) if x <= tt[-1] else TT[-1] + slope * (x - tt[-1])) + Q / c * lam
-        dl = (1 - lam) * (1 - math.exp(-Z * math.exp(-Ta / Tx) * h))
-        if dl > 1e-3:
-            h /= 4
-            continue
-        lam += dl
-        x += h
-        if dl < 1e-5:
-            h = min(1.5 * h, 1e-2)
-    print(f"fire_ring, h = 300 W/(m^2 K), heat_only steps of {dt} s: burst ignites by the kinetics at {t_burst:.4f} s "
-          f"(hottest charge particle {T[-2]:.1f} K the step before); the kinetics alone along that history reach 1 % at {x:.4f} s")
-    # burst checks at the end of each step: the runaway lies within the step that ends at t_burst
-    check("runaway before burst's ignition step ends (s)", max(0.0, x - t_burst), 1e-9, failures)
-    check("runaway within burst's ignition step (s over the step)", max(0.0, t_burst - dt - x) / dt, 1e-9, failures)
+
+    def advance(lam, theta, step):
+        """d lam/dt = Z (1 - lam) exp(-T_a/T), T = theta + Q lam / c, over `step` s."""
+        x, h = 0.0, 1e-4
+        while x < step:
+            h = min(h, step - x)
+            dl = (1 - lam) * (1 - math.exp(-Z * math.exp(-Ta / (theta + Q / c * lam)) * h))
+            if dl > 1e-5 and h > 1e-12:
+                h /= 4
+                continue
+            lam, x = lam + dl, x + h
+            if dl < 1e-7:
+                h *= 1.5
+        return lam
+
+    # step n's output: T_out = T_cond + Q/c (lam_n - lam_{n-1}), T_cond what the conduction left, so
+    # the decomposition ran at T = theta + Q/c lam with theta = T_out - Q/c lam_n; replayed from
+    # lam_{n-1}, it must give burst's lam_n
+    worst, crossed = 0.0, None
+    for n in range(1, len(times)):
+        replay = advance(lams[n - 1], temps[n] - Q / c * lams[n], times[n] - times[n - 1])
+        if lams[n] > 1e-9:
+            worst = max(worst, abs(replay - lams[n]) / lams[n])
+        if crossed is None and replay >= 0.01:
+            crossed = times[n]
+    print(f"fire_ring, h = 300 W/(m^2 K), heat_only steps of {dt} s: burst ignites by the kinetics at {t_burst:.4f} s (particle {which}, "
+          f"{temps[-2]:.1f} K and {lams[-2]:.3e} decomposed the step before, {lams[-1]:.3f} at ignition); replayed step by step, "
+          f"the same kinetics reach 1 % in the step ending at {crossed} s")
+    check("largest relative difference of the replayed decomposed fraction from burst's, over the steps", worst, args.kinetics_tol, failures)
+    check("the step in which the replay reaches 1 % against burst's ignition step (s apart)", abs((crossed if crossed is not None else math.inf) - t_burst), 1e-9, failures)
     finish("verify_fire_kinetics", failures)
+
+
+def scene(args):
+    """The whole fire scene, cold to fragments, with the wall time of each phase."""
+    import time
+    failures = []
+    with tempfile.TemporaryDirectory() as out:
+        cmd = [*MPIEXEC, "-n", str(args.ranks), args.burst, "-options_file", SCENE, "-output_dir", out, "-progress", "false", *args.extra.split()]
+        start, marks, lines = time.monotonic(), [], []
+        proc = subprocess.Popen(cmd, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        for line in proc.stdout:
+            lines.append(line)
+            if line.startswith("Phase "):
+                marks.append((time.monotonic() - start, line.strip()))
+                print(f"  [{marks[-1][0]:7.1f} s] {line.strip()}", flush=True)
+        proc.wait()
+        wall = time.monotonic() - start
+        if proc.returncode != 0:
+            sys.stdout.write("".join(lines[-60:]))
+            raise SystemExit(f"FAIL: burst exited with {proc.returncode}: {' '.join(cmd)}")
+        with open(os.path.join(out, "summary.json")) as f:
+            s = json.load(f)
+    ph = s["phases"]
+    print(f"pool_fire2d on {args.ranks} ranks: {wall:.0f} s wall time in all; heat_only from {ph['heat_only_start']:.4g} s, mechanics (ignition) from {ph['mechanics_start']:.4g} s simulated")
+    edges = [0.0] + [m[0] for m in marks] + [wall]
+    for name, a, b in zip(("heatup", "heat_only", "mechanics"), edges, edges[1:]):
+        print(f"  {name}: {b - a:.0f} s wall time")
+    g, b = s["gas"], s["budget"]
+    print(f"  steps {s['steps']}, fragments {s['fragment_count']}, burnt {g['burnt_mass']:.4g} kg/m, first failure at {s['fracture_time']:.4g} s "
+          f"({s['fracture_velocity']:.1f} m/s), largest cell pressure {g['peak_pressure'] / 1e9:.3g} GPa; energy residual {b['energy']['error_of_chemical']:.3e} "
+          f"of the chemical energy, mass {b['mass']['error']:.1e}; energy fallbacks {g['energy_fallbacks']}")
+    check("phases in order: heat_only starts after the heat-up (0: yes)", float(not 0 < ph["heat_only_start"] < ph["mechanics_start"]), 0, failures)
+    check("ignition reached: the mechanics ran (0: yes)", float(not s["final_time"] > ph["mechanics_start"]), 0, failures)
+    check("the charge burnt (0: yes)", float(not g["burnt_mass"] > 0), 0, failures)
+    check("the wall failed (0: yes)", float(not s["fracture_time"] > ph["mechanics_start"]), 0, failures)
+    check("fragments (1/count)", 1.0 / max(s["fragment_count"], 1e-300), 1.0, failures)
+    check("energy budget residual over the chemical energy released", abs(b["energy"]["error_of_chemical"]), 0.02, failures)
+    check("mass residual", abs(b["mass"]["error"]), 1e-10, failures)
+    finish("verify_fire_scene", failures)
 
 
 def air_properties(T):
@@ -307,19 +387,27 @@ def main():
     sub = ap.add_subparsers(dest="what", required=True)
     sub.add_parser("surface_heat")
     c = sub.add_parser("conduction")
-    c.add_argument("--cells", default="60,120;120,240", help="grids, finest last, each twice the one before")
-    c.add_argument("--steel-bound", type=float, default=0.03)
-    c.add_argument("--pbx-bound", type=float, default=0.15)
+    # measured at 2.5/1.25/0.625 mm: steel mean 2.9/2.2/1.3 %, charge band 14/12/7.1 % (the arithmetic
+    # mean of the shared cells' conductivities: 6.3/3.7/1.6 % and 35/22/9.5 %)
+    c.add_argument("--cells", default="30,60;60,120;120,240", help="grids, finest last, each twice the one before")
+    c.add_argument("--steel-bound", type=float, default=0.02, help="at the finest grid")
+    c.add_argument("--pbx-bound", type=float, default=0.10, help="at the finest grid")
+    c.add_argument("--steel-bound-coarse", type=float, default=0.045, help="at the coarsest grid (the scene's 2.5 mm)")
+    c.add_argument("--pbx-bound-coarse", type=float, default=0.20, help="at the coarsest grid (the scene's 2.5 mm)")
     c.add_argument("--time", type=float, default=30.0)
     c.add_argument("--band", type=float, default=2.5e-3, help="the charge's outer band compared (m)")
     sub.add_parser("parallel")
     sub.add_parser("heatup_budget")
-    sub.add_parser("kinetics")
+    k = sub.add_parser("kinetics")
+    k.add_argument("--kinetics-tol", type=float, default=1e-3, help="replayed decomposed fraction against burst's, relative")
+    w = sub.add_parser("scene")
+    w.add_argument("--ranks", type=int, default=2)
+    w.add_argument("--extra", default="", help="more burst options")
     r = sub.add_parser("correlation")
     r.add_argument("--cells", default="40,160")
     r.add_argument("--time", type=float, default=0.1)
     args = ap.parse_args()
-    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "heatup_budget": heatup_budget, "kinetics": kinetics, "correlation": correlation}[args.what](args)
+    {"surface_heat": surface_heat, "conduction": conduction, "parallel": parallel, "heatup_budget": heatup_budget, "kinetics": kinetics, "correlation": correlation, "scene": scene}[args.what](args)
 
 
 if __name__ == "__main__":

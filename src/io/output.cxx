@@ -177,7 +177,10 @@ static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
     {field::fragment, "fragment", 1, 1, true, false},
   };
   for (const auto &f : ModelFields(sim)) fields.push_back(f);
-  if (sim.phases.Enabled()) fields.push_back({field::surface_conductance, "surface_conductance", 1, 1, false, false});
+  if (sim.phases.Enabled()) {
+    fields.push_back({field::surface_conductance, "surface_conductance", 1, 1, false, false});
+    fields.push_back({field::reacted_fraction, "reacted_fraction", 1, 1, false, false});
+  }
   return fields;
 }
 
