@@ -332,7 +332,7 @@ def scene(args):
     for name, a, b in zip(("heatup", "heat_only", "mechanics"), edges, edges[1:]):
         print(f"  {name}: {b - a:.0f} s wall time")
     g, b = s["gas"], s["budget"]
-    print(f"  steps {s['steps']}, fragments {s['fragment_count']}, burnt {g['burnt_mass']:.4g} kg/m, first failure at {s['fracture_time']:.4g} s "
+    print(f"  steps {s['steps']}, fragments {s['fragment_count']}, burnt {g['burnt_mass']:.4g} kg/m, first failure {(s['fracture_time'] - ph['mechanics_start']) * 1e6:.1f} us after ignition "
           f"({s['fracture_velocity']:.1f} m/s), largest cell pressure {g['peak_pressure'] / 1e9:.3g} GPa; energy residual {b['energy']['error_of_chemical']:.3e} "
           f"of the chemical energy, mass {b['mass']['error']:.1e}; energy fallbacks {g['energy_fallbacks']}")
     check("phases in order: heat_only starts after the heat-up (0: yes)", float(not 0 < ph["heat_only_start"] < ph["mechanics_start"]), 0, failures)
