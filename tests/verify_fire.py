@@ -17,7 +17,8 @@ src/coupling/surface_heat.cxx).
                 0.625 mm (measured 2.9/2.2/1.3 % and 14/12/7.1 %, with the laminate conductivity of
                 the shared cells); the conductance the heat-up measured equals
                 -coupling_surface_heat_transfer to 1 %
-  parallel      the fire scene's short form through heatup -> heat_only -> mechanics (ignition
+  parallel      the fire scene's short form (--dim 3: the 3-D scene at 9 mm, without the restart)
+                through heatup -> heat_only -> mechanics (ignition
                 lowered to 310 K to reach it in seconds) on 1 and 2 ranks: the switch lines (steps,
                 times) identical, the measured heat rate to 1e-9 and the particle temperatures to
                 1e-6 K (the semi-implicit pressure's Krylov iterates differ with the partition, at
@@ -60,6 +61,7 @@ import numpy as np
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RING = os.path.join(ROOT, "tests", "decks", "fire_ring.opts")
 SCENE = os.path.join(ROOT, "options", "scenes", "pool_fire2d.opts")
+SCENE3D = os.path.join(ROOT, "options", "scenes", "pool_fire3d.opts")
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
 R_IN, R_OUT = 0.0508, 0.05715
 STEEL = dict(rho=7830.0, c=477.0, k=44.5)
@@ -213,11 +215,13 @@ def conduction(args):
 
 def parallel(args):
     failures = []
-    extra = ["-grid_cells", "20,80", "-phase_heatup_end_time", "8e-3", "-phase_flux_window", "3e-3", "-phase_heat_only_dt", "0.5",
+    scene = SCENE3D if args.dim == 3 else SCENE
+    cells = "10,35,15" if args.dim == 3 else "20,80"
+    extra = ["-grid_cells", cells, "-phase_heatup_end_time", "8e-3", "-phase_flux_window", "3e-3", "-phase_heat_only_dt", "0.5",
              "-phase_ignition", "temperature", "-phase_ignition_temperature", "310", "-phase_mechanics_duration", "2e-6", "-final_time", "3000", "-output_interval", "0", "-fragments", "false"]
     with tempfile.TemporaryDirectory() as one, tempfile.TemporaryDirectory() as two, tempfile.TemporaryDirectory() as again:
-        s1, o1 = run(args.burst, SCENE, one, extra)
-        s2, o2 = run(args.burst, SCENE, two, extra, ranks=2)
+        s1, o1 = run(args.burst, scene, one, extra)
+        s2, o2 = run(args.burst, scene, two, extra, ranks=2)
         p1, p2 = last_particles(one), last_particles(two)
         switches = lambda text: [line for line in text.splitlines() if line.startswith("Phase ")]
         print("\n".join(switches(o1)))
@@ -227,6 +231,10 @@ def parallel(args):
             check(f"1 and 2 ranks: phases.{key} relative difference", abs(a - b) / max(abs(a), 1e-300), 1e-9, failures)
         # (the semi-implicit pressure's Krylov iterates differ with the partition, at its tolerance)
         check("1 and 2 ranks: particle temperatures (K)", float(np.max(np.abs(p1["temperature"] - p2["temperature"]))), 1e-6, failures)
+        check("the mechanics ran (0: yes)", float(not s1["final_time"] > s1["phases"]["mechanics_start"]), 0, failures)
+        if args.dim == 3:  # (the restart is the 2-D run's)
+            finish("verify_fire_parallel", failures)
+            return
         # the heat_only checkpoint, continued with a higher ignition temperature
         cps = sorted(f for f in os.listdir(one) if f.startswith("phase_") and f.endswith(".h5"))
         check("a checkpoint kept at each switch (count - 2)", float(abs(len(cps) - 2)), 0, failures)
@@ -396,7 +404,8 @@ def main():
     c.add_argument("--pbx-bound-coarse", type=float, default=0.20, help="at the coarsest grid (the scene's 2.5 mm)")
     c.add_argument("--time", type=float, default=30.0)
     c.add_argument("--band", type=float, default=2.5e-3, help="the charge's outer band compared (m)")
-    sub.add_parser("parallel")
+    q = sub.add_parser("parallel")
+    q.add_argument("--dim", type=int, default=2, choices=(2, 3), help="the 2-D scene (and a restart) or the 3-D one")
     sub.add_parser("heatup_budget")
     k = sub.add_parser("kinetics")
     k.add_argument("--kinetics-tol", type=float, default=1e-3, help="replayed decomposed fraction against burst's, relative")
