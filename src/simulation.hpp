@@ -143,6 +143,8 @@ struct Grid {
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 
+class CheckpointValues; // src/io/checkpoint_values.hpp
+
 struct Diagnostics {
   PetscReal external_work       = 0; // J, work of body forces and tractions (this rank)
   PetscReal removed_energy      = 0; // J, kinetic + internal energy of removed particles (this rank)
@@ -160,6 +162,7 @@ struct Diagnostics {
   PetscReal budget_scale[3]   = {0, 0, 0};
   PetscReal max_error_displacement = 0; // analytic solutions: max over monitor steps of the L2 error
   PetscReal last_error_displacement = 0;
+  void      Checkpoint(CheckpointValues &values); // its part of a checkpoint (src/io/monitor.cxx)
 };
 
 struct Simulation {

@@ -15,7 +15,8 @@ subcommand runs real option files through burst and checks files and messages.
               a note and continues from the older valid one
   options     a restart with a changed physics option is refused naming the option and both values;
               -restart_allow_option_change continues with a note; an output option may change freely
-  legacy      a checkpoint without run id and checksum (an older burst's) is accepted with a note
+  legacy      a checkpoint without run id and checksum (an older burst's) is accepted with a note;
+              one without a part's values (another version's layout) is refused, naming the part
   lock        one run per folder: --case live (a second run, also on 2 ranks, is refused naming the
               holder's host and pid; the first ends normally and removes the lock), stale (a dead
               pid's lock on this host, a live pid running another program, an old lock of another
@@ -194,6 +195,15 @@ def legacy(args):
                 del f.attrs[a]
     p = burst(args, out, ["-max_steps", "6", "-restart", cp])
     check("a checkpoint without identity is accepted with a note", p.returncode == 0 and re.search(r"Note: checkpoint .*checkpoint_000005\.h5 carries no run id, physics options or checksum .*: it is not verified, and this run continues as run [0-9a-f]{16}", p.text) is not None, p.text)
+    # a checkpoint whose parts another version wrote (format 2 kept every number in /run): refused,
+    # naming the part and both lists of values
+    out = fresh(os.path.join(args.out, "parts"))
+    burst(args, out, ["-max_steps", "5", "-checkpoint_interval", "5"])
+    cp = os.path.join(out, "checkpoint_000005.h5")
+    with h5py.File(cp, "r+") as f:
+        del f.attrs["fragments_values"]
+    p = burst(args, out, ["-max_steps", "6", "-restart", cp])
+    check("a checkpoint without a part's values is refused, naming it", refused(p, r"does not hold this burst's run-wide values for /fragments \(it holds 'none', this burst keeps 'fracture_velocity:1,fracture_time:1,"), p.text)
     check.finish()
 
 

@@ -9,6 +9,7 @@
 #include "../mpm/grid_index.hpp"
 #include "../mpm/swarm_access.hpp"
 #include "util.hpp"
+#include "io/checkpoint_values.hpp"
 #include <cmath>
 
 namespace burst {
@@ -492,6 +493,13 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
     PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void CouplingCheckpointValues(Coupling &c, CheckpointValues &values)
+{
+  values.Global("burnt_particles", &c.burnt_particles);
+  values.PerRank("burnt_mass", &c.burnt_mass);
+  values.PerRank("counters", c.counters, kNumCouplingCounters);
 }
 
 void CouplingDeleter::operator()(Coupling *coupling) const { delete coupling; }

@@ -23,6 +23,11 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
 // for the solids in the gas.
 PetscErrorCode CouplingSetUp(Simulation &sim);
 
+// The coupling's part of a checkpoint: the burnt particles, and each rank's burnt mass and budget
+// counters.
+class CheckpointValues;
+void CouplingCheckpointValues(Coupling &c, CheckpointValues &values);
+
 // The coupled phases, in the order of src/step.cxx.
 PetscErrorCode CouplingProjectSolids(Simulation &sim);       // particles -> nodes -> cells (M, u, T)
 PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes -> particles

@@ -372,4 +372,11 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice);
 PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction);
 PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscReal time, PetscInt step);
 
+// The gas solver's part of a checkpoint (checkpoint.cxx): its counters and accumulators by name,
+// and its cell state, /gas/state in natural ordering.
+class CheckpointValues;
+void           IceCheckpointValues(IceSolver &ice, CheckpointValues &values);
+PetscErrorCode IceCheckpointWrite(IceSolver &ice, PetscViewer viewer);
+PetscErrorCode IceCheckpointRead(IceSolver &ice, PetscViewer viewer, const std::string &file);
+
 } // namespace burst

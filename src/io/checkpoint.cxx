@@ -5,20 +5,24 @@
 //   /particles/<field>   every swarm field registered through RegisterSwarmField (the models' state
 //                        included) and the particle id, [N] or [N][bs], integers as reals (exact
 //                        below 2^53), in rank order;
-//   /gas/state           the gas cell DMDA vector (natural ordering), when the scene has gas;
-//   /run/scalars         time, step, dt, ids, energy accumulators and what the monitor, the fragment
-//                        search and the gas solver remember between steps;
-//   /run/rank_values     per-rank accumulators and particle counts, so that a restart on the same
-//                        number of ranks gives every rank its own particles in their own order and its
-//                        own partial sums: the continuation is then bit-identical; on another number
-//                        of ranks the particles are split evenly and migrated, and the partial sums
-//                        go to rank 0 (round-off);
-//   /run/output_records, /run/gas_records  the output series so far (particles.xmf, gas.xmf);
+//   /gas/state           the gas cell DMDA vector (natural ordering), when the scene has gas
+//                        (written and read by the gas solver, src/ice/checkpoint.cxx);
+//   /<part>/values, /<part>/rank_values  each component's numbers (checkpoint_values.hpp): run
+//                        (time, step, ids, each rank's particle count), diagnostics, output,
+//                        fragments, gas, coupling; the names as the attributes <part>_values and
+//                        <part>_rank_values of /, which a restart checks. Per-rank values keep
+//                        every rank's partial sums and particle count, so that a restart on the same
+//                        number of ranks gives every rank its own particles in their own order and
+//                        its own sums: the continuation is then bit-identical; on another number of
+//                        ranks the particles are split evenly and migrated, and the sums go to rank
+//                        0 (round-off);
+//   /phases/state        the phases' record (src/phases.cxx), with -phases;
+//   /output/records, /output/gas_records  the output series so far (particles.xmf, gas.xmf);
 // and attributes on / naming the scene (scene, dim, cells, materials, gas materials, particles) that
 // a restart checks. The "complete" attribute is written last, and the file is written under a
 // temporary name and renamed: a run killed while writing leaves the previous checkpoint intact.
 //
-// Identity and integrity (attributes on /, format 2):
+// Identity and integrity (attributes on /, format 3; format 2 kept every number in /run):
 //   run_id           16 hex digits drawn at random when a run starts fresh; a restart continues its
 //                    checkpoint's run id, so a run and its restarts are one lineage;
 //   physics_options  the options that define the physics, one "-name value" a line, sorted: every
@@ -42,7 +46,8 @@
 // A random state is not needed: the only random draw (initial porosity) is keyed by particle id.
 #include "checkpoint.hpp"
 #include "../ice/ice.hpp"
-#include "../coupling/coupling_impl.hpp"
+#include "../coupling/coupling.hpp"
+#include "checkpoint_values.hpp"
 #include "../mpm/swarm_access.hpp"
 #include "util.hpp"
 #include "run_lock.hpp"
@@ -86,31 +91,6 @@ struct CheckpointOptions {
 volatile std::sig_atomic_t stop_signal = 0;
 void OnStopSignal(int signum) { stop_signal = signum; }
 
-// Scalars of /run/scalars, in this order.
-enum Scalar : int {
-  kTime, kDt, kStep, kNextPid, kParticleSteps, kTotalParticles, kInitialEnergy, kMaxErrorDisplacement, kLastErrorDisplacement, kEnergyScale, kTrackPid, kWallStepping,
-  kFragments, // 6 values
-  kIceTime = kFragments + 6, kIceStep, kIceDt, kIceKspTotal, kIcePressureSolves, kIceKsp, kIceOuter,
-  kIceInitial, // mass, momentum (3), internal, kinetic
-  kBurntParticles = kIceInitial + 6,
-  kIcePeakPressure, kIcePeakPressureTime, kInitialKinetic,
-  kBudgetInitial,                   // the budgets' initial sums: mass, momentum (3), energy
-  kBudgetScale = kBudgetInitial + 5, // their largest terms: mass, momentum, energy
-  kNumScalars = kBudgetScale + 3
-};
-// Per-rank values of /run/rank_values, in this order.
-enum RankValue : int {
-  kExternalWork, kRemovedEnergy, kViscousWork, kRemovedMass, kRemovedParticles, kBurntMass, kEnergyFallbacks, kLocalParticles,
-  kBoundaryBudget,                      // the gas's IceBoundaryBudget: mass, momentum (3), energy, work, impulse (3)
-  kRemovedMomentum = kBoundaryBudget + 9, // 3
-  kBcImpulse = kRemovedMomentum + 3,      // 3
-  kDragEnergyChange = kBcImpulse + 3,     // the gas's energy diagnostics, IceSolver::EnergyDiagnostics order
-  kCouplingCounters = kDragEnergyChange + IceSolver::kEnergyDiagnostics, // the coupling's budget counters
-  kFallbackCounters = kCouplingCounters + kNumCouplingCounters, // the gas's energy fallbacks: the remap's, the exchange's, then by cell class
-  kBoundaryFaceMass = kFallbackCounters + 2 + kIceFallbackClasses, // the gas's IceBoundaryBudget face_mass, xmin, xmax, ymin, ... (6)
-  kNumRankValues = kBoundaryFaceMass + 6
-};
-
 // ---- Identity and integrity --------------------------------------------------------------------
 
 inline uint64_t Mix64(uint64_t z)
@@ -150,6 +130,12 @@ uint64_t DatasetSum(const std::string &path, PetscInt64 offset, const PetscScala
 }
 
 // Adds a Vec's local entries (held in PETSc's ordering = the file's for a plain Vec) to the checksum.
+PetscErrorCode ChecksumVec(Vec v, const std::string &path);
+} // namespace
+
+PetscErrorCode CheckpointChecksumVec(Vec v, const std::string &path) { return ChecksumVec(v, path); }
+
+namespace {
 PetscErrorCode ChecksumVec(Vec v, const std::string &path)
 {
   PetscInt           lo, hi;
@@ -495,7 +481,7 @@ PetscErrorCode CreateRootVec(const Simulation &sim, PetscInt n, const char name[
 }
 
 // Writes rank 0's values (the other ranks' are ignored); nothing when rank 0 has none.
-PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const char name[], const std::vector<PetscReal> &values, PetscInt *count = nullptr)
+PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const std::string &group, const char name[], const std::vector<PetscReal> &values, PetscInt *count = nullptr)
 {
   Vec          v;
   PetscScalar *a;
@@ -509,14 +495,14 @@ PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const 
   if (!sim.rank)
     for (size_t i = 0; i < values.size(); ++i) a[i] = values[i];
   PetscCall(VecRestoreArray(v, &a));
-  PetscCall(ChecksumVec(v, std::string("run/") + name));
+  PetscCall(ChecksumVec(v, group + "/" + name));
   PetscCall(VecView(v, viewer));
   PetscCall(VecDestroy(&v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Reads a vector written by WriteRootValues and gives its n values to every rank.
-PetscErrorCode ReadRootValues(const Simulation &sim, PetscViewer viewer, const std::string &file, const char name[], PetscInt n, std::vector<PetscReal> &values)
+PetscErrorCode ReadRootValues(const Simulation &sim, PetscViewer viewer, const std::string &file, const std::string &group, const char name[], PetscInt n, std::vector<PetscReal> &values)
 {
   Vec                v;
   const PetscScalar *a;
@@ -524,10 +510,13 @@ PetscErrorCode ReadRootValues(const Simulation &sim, PetscViewer viewer, const s
   PetscFunctionBeginUser;
   values.assign(n, 0);
   if (!n) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(PetscViewerHDF5HasDataset(viewer, (std::string("/run/") + name).c_str(), &has));
-  PetscCheck(has, sim.comm, PETSC_ERR_FILE_UNEXPECTED, "Checkpoint %s lacks /run/%s (truncated or not a burst checkpoint)", file.c_str(), name);
+  const std::string path = "/" + group + "/" + name;
+  PetscCall(PetscViewerHDF5HasDataset(viewer, path.c_str(), &has));
+  PetscCheck(has, sim.comm, PETSC_ERR_FILE_UNEXPECTED, "Checkpoint %s lacks %s (truncated or not a burst checkpoint)", file.c_str(), path.c_str());
   PetscCall(CreateRootVec(sim, n, name, &v));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, ("/" + group).c_str()));
   PetscCall(VecLoad(v, viewer));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecGetArrayRead(v, &a));
   if (!sim.rank)
     for (PetscInt i = 0; i < n; ++i) values[i] = a[i];
@@ -572,110 +561,82 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer viewer)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode WriteGas(Simulation &sim, PetscViewer viewer)
+// The components' parts of a checkpoint (checkpoint_values.hpp), each under its own group. "run"
+// is the driver's: time, step and ids, and each rank's particle count (the restart's split).
+struct Part {
+  std::string      name;
+  CheckpointValues values;
+};
+
+std::vector<Part> Parts(Simulation &sim, PetscInt64 *local_particles)
 {
-  Vec v;
-  PetscFunctionBeginUser;
-  PetscCall(IceSyncGlobal(*sim.ice)); // the local vector is the gas solver's working copy
-  PetscCall(VecDuplicate(sim.ice->state, &v));
-  PetscCall(VecCopy(sim.ice->state, v));
-  PetscCall(PetscObjectSetName((PetscObject)v, "state"));
-  { // the file holds the natural ordering: the checksum adds the entries at their place there
-    DM  da;
-    Vec natural;
-    PetscCall(VecGetDM(v, &da));
-    PetscCall(DMDACreateNaturalVector(da, &natural));
-    PetscCall(DMDAGlobalToNaturalBegin(da, v, INSERT_VALUES, natural));
-    PetscCall(DMDAGlobalToNaturalEnd(da, v, INSERT_VALUES, natural));
-    PetscCall(ChecksumVec(natural, "gas/state"));
-    PetscCall(VecDestroy(&natural));
+  std::vector<Part> parts(4);
+  parts[0].name = "run";
+  CheckpointValues &run = parts[0].values;
+  run.Global("time", &sim.time);
+  run.Global("dt", &sim.dt);
+  run.Global("step", &sim.step);
+  run.Global("next_pid", &sim.next_pid);
+  run.Global("particle_steps", &sim.particle_steps);
+  run.Global("total_particles", &sim.total_particles);
+  run.Global("wall_stepping", &sim.wall_stepping);
+  run.PerRank("local_particles", local_particles);
+  parts[1].name = "diagnostics";
+  sim.diag.Checkpoint(parts[1].values);
+  parts[2].name = "output";
+  sim.output.Checkpoint(parts[2].values);
+  parts[3].name = "fragments";
+  sim.fragments.Checkpoint(parts[3].values);
+  if (sim.ice) {
+    parts.push_back({"gas", {}});
+    IceCheckpointValues(*sim.ice, parts.back().values);
   }
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/gas"));
-  PetscCall(VecView(v, viewer));
+  if (sim.coupling) {
+    parts.push_back({"coupling", {}});
+    CouplingCheckpointValues(*sim.coupling, parts.back().values);
+  }
+  return parts;
+}
+
+// A part's values to /<part>/values (rank 0's) and /<part>/rank_values (every rank's row), with the
+// names as attributes of / (<part>_values, <part>_rank_values).
+PetscErrorCode WritePart(Simulation &sim, PetscViewer viewer, const Part &part)
+{
+  const std::vector<PetscReal> mine = part.values.Pack(true);
+  std::vector<PetscReal>       rows(sim.rank ? 0 : mine.size() * sim.size);
+  PetscFunctionBeginUser;
+  PetscCallMPI(MPI_Gather(mine.data(), (int)mine.size(), MPIU_REAL, rows.data(), (int)mine.size(), MPIU_REAL, 0, sim.comm));
+  const std::string group = "/" + part.name, names = part.values.Names(false), rank_names = part.values.Names(true);
+  PetscCall(PetscViewerHDF5PushGroup(viewer, group.c_str()));
+  PetscCall(WriteRootValues(sim, viewer, part.name, "values", part.values.Pack(false)));
+  PetscCall(WriteRootValues(sim, viewer, part.name, "rank_values", rows));
   PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscCall(VecDestroy(&v));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", (part.name + "_values").c_str(), PETSC_STRING, names.c_str()));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", (part.name + "_rank_values").c_str(), PETSC_STRING, rank_names.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RankValues(Simulation &sim, std::vector<PetscReal> &all)
+// A part's values as written, checked by name against what this run's part lists.
+PetscErrorCode ReadPart(Simulation &sim, PetscViewer viewer, const std::string &file, const Part &part, PetscInt saved_ranks, std::vector<PetscReal> &values, std::vector<PetscReal> &rows)
 {
-  PetscReal mine[kNumRankValues] = {0};
-  PetscInt  n                    = 0;
   PetscFunctionBeginUser;
-  if (sim.HasParticles()) PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  mine[kExternalWork]      = sim.diag.external_work;
-  mine[kRemovedEnergy]     = sim.diag.removed_energy;
-  mine[kViscousWork]       = sim.diag.viscous_work;
-  mine[kRemovedMass]       = sim.diag.removed_mass;
-  mine[kRemovedParticles]  = (PetscReal)sim.diag.removed_particles;
-  mine[kBurntMass]         = sim.coupling ? sim.coupling->burnt_mass : 0;
-  mine[kEnergyFallbacks]   = sim.ice ? (PetscReal)sim.ice->energy_fallbacks : 0;
-  mine[kLocalParticles]    = (PetscReal)n;
-  if (sim.ice) {
-    mine[kFallbackCounters]     = (PetscReal)sim.ice->energy_fallbacks_remap;
-    mine[kFallbackCounters + 1] = (PetscReal)sim.ice->energy_fallbacks_exchange;
-    for (int k = 0; k < kIceFallbackClasses; ++k) mine[kFallbackCounters + 2 + k] = (PetscReal)sim.ice->energy_fallbacks_class[k];
+  for (const bool per_rank : {false, true}) {
+    const std::string attr = part.name + (per_rank ? "_rank_values" : "_values");
+    const std::string mine = part.values.Names(per_rank);
+    std::string       theirs;
+    PetscBool         has;
+    PetscCall(PetscViewerHDF5HasAttribute(viewer, "/", attr.c_str(), &has));
+    if (has) {
+      char *text = nullptr;
+      PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", attr.c_str(), PETSC_STRING, nullptr, &text));
+      theirs = text;
+      PetscCall(PetscFree(text));
+    }
+    PetscCheck(has && theirs == mine, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not hold this burst's %s values for /%s (it holds '%s', this burst keeps '%s'): it was written by another version of burst or another scene; restart it with the burst that wrote it", file.c_str(), per_rank ? "per-rank" : "run-wide", part.name.c_str(), has ? theirs.c_str() : "none", mine.c_str());
   }
-  if (sim.ice) {
-    const IceBoundaryBudget &f = sim.ice->boundary;
-    const PetscReal          values[9] = {f.mass, f.momentum[0], f.momentum[1], f.momentum[2], f.energy, f.work, f.impulse[0], f.impulse[1], f.impulse[2]};
-    for (int k = 0; k < 9; ++k) mine[kBoundaryBudget + k] = values[k];
-    for (int k = 0; k < 6; ++k) mine[kBoundaryFaceMass + k] = f.face_mass[k / 2][k % 2];
-    const auto diagnostics = sim.ice->EnergyDiagnostics();
-    for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) mine[kDragEnergyChange + k] = *diagnostics[k];
-  }
-  for (int d = 0; d < 3; ++d) {
-    mine[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
-    mine[kBcImpulse + d]       = sim.diag.bc_impulse[d];
-  }
-  if (sim.coupling)
-    for (int k = 0; k < kNumCouplingCounters; ++k) mine[kCouplingCounters + k] = sim.coupling->counters[k];
-  all.assign(sim.rank ? 0 : (size_t)kNumRankValues * sim.size, 0);
-  PetscCallMPI(MPI_Gather(mine, kNumRankValues, MPIU_REAL, all.data(), kNumRankValues, MPIU_REAL, 0, sim.comm));
+  PetscCall(ReadRootValues(sim, viewer, file, part.name, "values", part.values.Count(false), values));
+  PetscCall(ReadRootValues(sim, viewer, file, part.name, "rank_values", part.values.Count(true) * saved_ranks, rows));
   PetscFunctionReturn(PETSC_SUCCESS);
-}
-
-std::vector<PetscReal> Scalars(const Simulation &sim)
-{
-  std::vector<PetscReal> s(kNumScalars, 0);
-  s[kTime]                  = sim.time;
-  s[kDt]                    = sim.dt;
-  s[kStep]                  = (PetscReal)sim.step;
-  s[kNextPid]               = (PetscReal)sim.next_pid;
-  s[kParticleSteps]         = (PetscReal)sim.particle_steps;
-  s[kTotalParticles]        = (PetscReal)sim.total_particles;
-  s[kInitialEnergy]         = sim.diag.initial_energy;
-  s[kMaxErrorDisplacement]  = sim.diag.max_error_displacement;
-  s[kLastErrorDisplacement] = sim.diag.last_error_displacement;
-  s[kEnergyScale]           = sim.output.energy_scale;
-  s[kTrackPid]              = (PetscReal)sim.output.track_pid;
-  s[kWallStepping]          = sim.wall_stepping;
-  {
-    const Fragments &fr = sim.fragments;
-    const PetscReal  measured[6] = {fr.fracture_velocity, fr.fracture_time, (PetscReal)fr.last_count, fr.initial_mass, fr.largest_mass, fr.total_intact_mass};
-    for (int k = 0; k < 6; ++k) s[kFragments + k] = measured[k];
-  }
-  s[kInitialKinetic] = sim.diag.initial_kinetic;
-  for (int k = 0; k < 5; ++k) s[kBudgetInitial + k] = sim.diag.budget_initial[k];
-  for (int k = 0; k < 3; ++k) s[kBudgetScale + k] = sim.diag.budget_scale[k];
-  if (sim.ice) {
-    const IceSolver &ice = *sim.ice;
-    s[kIceTime]           = ice.time;
-    s[kIceStep]           = (PetscReal)ice.step;
-    s[kIceDt]             = ice.dt;
-    s[kIceKspTotal]       = (PetscReal)ice.ksp_iterations_total;
-    s[kIcePressureSolves] = (PetscReal)ice.pressure_solves;
-    s[kIceKsp]            = (PetscReal)ice.ksp_iterations;
-    s[kIceOuter]          = (PetscReal)ice.outer_iterations;
-    s[kIceInitial]        = ice.initial.mass;
-    for (int d = 0; d < 3; ++d) s[kIceInitial + 1 + d] = ice.initial.momentum[d];
-    s[kIceInitial + 4] = ice.initial.internal_energy;
-    s[kIceInitial + 5] = ice.initial.kinetic_energy;
-    s[kIcePeakPressure]     = ice.peak_pressure;
-    s[kIcePeakPressureTime] = ice.peak_pressure_time;
-  }
-  if (sim.coupling) s[kBurntParticles] = (PetscReal)sim.coupling->burnt_particles;
-  return s;
 }
 
 // Removes all but the newest `keep` checkpoints of this run (rank 0): newest written first, so that a
@@ -791,13 +752,13 @@ PetscErrorCode CheckString(const Simulation &sim, PetscViewer viewer, const std:
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::string &file, PetscInt64 total, const std::vector<PetscReal> &rank_values, PetscInt saved_ranks)
+PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::string &file, PetscInt64 total, const std::vector<PetscInt64> &local_counts, PetscInt saved_ranks)
 {
   PetscInt local;
   PetscFunctionBeginUser;
   // Same number of ranks: every rank takes back its own particles, in order (bit-identical);
   // otherwise an even split, then migration to the owners.
-  if (saved_ranks == sim.size) local = (PetscInt)rank_values[(size_t)kNumRankValues * sim.rank + kLocalParticles];
+  if (saved_ranks == sim.size) local = (PetscInt)local_counts[sim.rank];
   else local = (PetscInt)(total / sim.size + (sim.rank < total % sim.size ? 1 : 0));
   PetscCall(DMSwarmSetLocalSizes(sim.swarm, local, 16));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
@@ -836,25 +797,6 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::str
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ReadGas(Simulation &sim, PetscViewer viewer, const std::string &file)
-{
-  IceSolver &ice = *sim.ice;
-  Vec        v;
-  PetscBool  has;
-  PetscFunctionBeginUser;
-  PetscCall(PetscViewerHDF5HasDataset(viewer, "/gas/state", &has));
-  PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s has no gas state, but this run has gas (-ice_materials %s)", file.c_str(), GasNames(sim).c_str());
-  PetscCall(VecDuplicate(ice.state, &v));
-  PetscCall(PetscObjectSetName((PetscObject)v, "state"));
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/gas"));
-  PetscCall(VecLoad(v, viewer));
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  PetscCall(VecCopy(v, ice.state));
-  PetscCall(VecDestroy(&v));
-  PetscCall(DMGlobalToLocal(ice.da, ice.state, INSERT_VALUES, ice.local));
-  PetscCall(IceUpdateGhosts(ice));
-  PetscFunctionReturn(PETSC_SUCCESS);
-}
 } // namespace
 
 namespace {
@@ -978,22 +920,30 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
   opts.checksum = 0;
   if (sim.HasParticles()) PetscCall(WriteParticles(sim, viewer));
-  if (sim.ice) PetscCall(WriteGas(sim, viewer));
-  std::vector<PetscReal> ranks;
-  PetscCall(RankValues(sim, ranks));
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/run"));
-  PetscCall(WriteRootValues(sim, viewer, "scalars", Scalars(sim)));
-  PetscCall(WriteRootValues(sim, viewer, "rank_values", ranks));
-  if (sim.phases.Enabled()) PetscCall(WriteRootValues(sim, viewer, "phases", PhasesState(sim)));
+  if (sim.ice) PetscCall(IceCheckpointWrite(*sim.ice, viewer));
+  PetscInt64 local_particles = 0;
+  if (sim.HasParticles()) {
+    PetscInt n;
+    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    local_particles = n;
+  }
+  for (const Part &part : Parts(sim, &local_particles)) PetscCall(WritePart(sim, viewer, part));
+  if (sim.phases.Enabled()) {
+    PetscCall(PetscViewerHDF5PushGroup(viewer, "/phases"));
+    PetscCall(WriteRootValues(sim, viewer, "phases", "state", PhasesState(sim)));
+    PetscCall(PetscViewerHDF5PopGroup(viewer));
+  }
+  // the output series (rank 0's)
+  PetscCall(PetscViewerHDF5PushGroup(viewer, "/output"));
   std::vector<PetscReal> flat;
   for (const OutputRecord &r : sim.output.records) flat.insert(flat.end(), {(PetscReal)r.step, r.time, (PetscReal)r.particles});
   PetscInt nrec;
-  PetscCall(WriteRootValues(sim, viewer, "output_records", flat, &nrec));
+  PetscCall(WriteRootValues(sim, viewer, "output", "records", flat, &nrec));
   nrec /= 3;
   flat.clear();
   for (const GasOutputRecord &r : sim.output.gas_records) flat.insert(flat.end(), {(PetscReal)r.step, r.time});
   PetscInt ngas;
-  PetscCall(WriteRootValues(sim, viewer, "gas_records", flat, &ngas));
+  PetscCall(WriteRootValues(sim, viewer, "output", "gas_records", flat, &ngas));
   ngas /= 2;
   PetscCall(PetscViewerHDF5PopGroup(viewer));
   // what a restart checks
@@ -1017,7 +967,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
     PetscCall(BcastString(sim.comm, text)); // identical on every rank (collective attribute writes)
     double when = (double)std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count() * 1e-6;
     PetscCallMPI(MPI_Bcast(&when, 1, MPI_DOUBLE, 0, sim.comm));
-    const PetscInt    format = 2;
+    const PetscInt    format = 3;
     const std::string checksum = Hex(sum), hash = Hex(Fnv64(text));
     PetscReal         written_at = (PetscReal)when;
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "format", PETSC_INT, &format));
@@ -1113,95 +1063,42 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", "output_records", PETSC_INT, nullptr, &nrec));
   PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", "gas_records", PETSC_INT, nullptr, &ngas));
 
-  std::vector<PetscReal> s, ranks, rec, gas_rec;
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/run"));
-  PetscCall(ReadRootValues(sim, viewer, file, "scalars", kNumScalars, s));
-  PetscCall(ReadRootValues(sim, viewer, file, "rank_values", (PetscInt)kNumRankValues * saved_ranks, ranks));
-  PetscCall(ReadRootValues(sim, viewer, file, "output_records", 3 * nrec, rec));
-  PetscCall(ReadRootValues(sim, viewer, file, "gas_records", 2 * ngas, gas_rec));
-  std::vector<PetscReal> phases;
+  // every part's values first: the particles need the run's counts, and the parts are applied
+  // after the particles and the gas are read (their set-up state stays until then)
+  PetscInt64              local_particles = 0;
+  std::vector<Part>       parts = Parts(sim, &local_particles);
+  std::vector<std::vector<PetscReal>> values(parts.size()), rows(parts.size());
+  for (size_t i = 0; i < parts.size(); ++i) PetscCall(ReadPart(sim, viewer, file, parts[i], saved_ranks, values[i], rows[i]));
+  std::vector<PetscReal> rec, gas_rec, phases;
+  PetscCall(ReadRootValues(sim, viewer, file, "output", "records", 3 * nrec, rec));
+  PetscCall(ReadRootValues(sim, viewer, file, "output", "gas_records", 2 * ngas, gas_rec));
   if (sim.phases.Enabled()) {
     PetscBool has;
-    PetscCall(PetscViewerHDF5HasDataset(viewer, "/run/phases", &has));
+    PetscCall(PetscViewerHDF5HasDataset(viewer, "/phases/state", &has));
     PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: checkpoint %s was written by a run without phases; restart it without -phases", file.c_str());
-    PetscCall(ReadRootValues(sim, viewer, file, "phases", kPhasesStateSize, phases));
+    PetscCall(ReadRootValues(sim, viewer, file, "phases", "state", kPhasesStateSize, phases));
   }
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
-  if (sim.HasParticles()) PetscCall(ReadParticles(sim, viewer, file, (PetscInt64)s[kTotalParticles], ranks, saved_ranks));
-  if (sim.ice) PetscCall(ReadGas(sim, viewer, file));
+  if (sim.HasParticles()) {
+    const CheckpointValues &run = parts[0].values;
+    const PetscInt          width = run.Count(true), at = run.Offset(true, "local_particles");
+    std::vector<PetscInt64> counts(saved_ranks);
+    for (PetscInt r = 0; r < saved_ranks; ++r) counts[r] = (PetscInt64)rows[0][(size_t)width * r + at];
+    PetscCall(ReadParticles(sim, viewer, file, (PetscInt64)values[0][run.Offset(false, "total_particles")], counts, saved_ranks));
+  }
+  if (sim.ice) PetscCall(IceCheckpointRead(*sim.ice, viewer, file));
   PetscCall(PetscViewerDestroy(&viewer));
 
   if (!phases.empty()) PetscCall(PhasesRestore(sim, phases));
-  sim.time                         = s[kTime];
-  sim.dt                           = s[kDt];
-  sim.step                         = (PetscInt)s[kStep];
-  sim.next_pid                     = (PetscInt64)s[kNextPid];
-  sim.particle_steps               = (PetscInt64)s[kParticleSteps];
-  sim.diag.initial_energy          = s[kInitialEnergy];
-  sim.diag.max_error_displacement  = s[kMaxErrorDisplacement];
-  sim.diag.last_error_displacement = s[kLastErrorDisplacement];
-  sim.output.track_pid             = (PetscInt)s[kTrackPid];
-  sim.wall_stepping                = s[kWallStepping];
-  sim.output.energy_scale          = s[kEnergyScale];
-  {
-    Fragments &fr = sim.fragments;
-    fr.fracture_velocity = s[kFragments], fr.fracture_time = s[kFragments + 1], fr.last_count = (PetscInt64)s[kFragments + 2];
-    fr.initial_mass = s[kFragments + 3], fr.largest_mass = s[kFragments + 4], fr.total_intact_mass = s[kFragments + 5];
-  }
-  sim.diag.initial_kinetic = s[kInitialKinetic];
-  for (int k = 0; k < 5; ++k) sim.diag.budget_initial[k] = s[kBudgetInitial + k];
-  for (int k = 0; k < 3; ++k) sim.diag.budget_scale[k] = s[kBudgetScale + k];
-  if (sim.ice) {
-    IceSolver &ice           = *sim.ice;
-    ice.time                 = s[kIceTime];
-    ice.step                 = (PetscInt)s[kIceStep];
-    ice.dt                   = s[kIceDt];
-    ice.ksp_iterations_total = (PetscInt64)s[kIceKspTotal];
-    ice.pressure_solves      = (PetscInt64)s[kIcePressureSolves];
-    ice.ksp_iterations       = (PetscInt)s[kIceKsp];
-    ice.outer_iterations     = (PetscInt)s[kIceOuter];
-    ice.initial.mass         = s[kIceInitial];
-    for (int d = 0; d < 3; ++d) ice.initial.momentum[d] = s[kIceInitial + 1 + d];
-    ice.initial.internal_energy = s[kIceInitial + 4];
-    ice.initial.kinetic_energy  = s[kIceInitial + 5];
-    ice.peak_pressure           = s[kIcePeakPressure];
-    ice.peak_pressure_time      = s[kIcePeakPressureTime];
-  }
-  if (sim.coupling) sim.coupling->burnt_particles = (PetscInt64)s[kBurntParticles];
   // Per-rank partial sums: each rank its own on the same number of ranks, else all on rank 0.
-  PetscReal mine[kNumRankValues] = {0};
-  for (PetscInt r = 0; r < saved_ranks; ++r)
-    if (saved_ranks == sim.size ? r == sim.rank : sim.rank == 0)
-      for (int k = 0; k < kNumRankValues; ++k) mine[k] += ranks[(size_t)kNumRankValues * r + k];
-  sim.diag.external_work     = mine[kExternalWork];
-  sim.diag.removed_energy    = mine[kRemovedEnergy];
-  sim.diag.viscous_work      = mine[kViscousWork];
-  sim.diag.removed_mass      = mine[kRemovedMass];
-  sim.diag.removed_particles = (PetscInt)mine[kRemovedParticles];
-  if (sim.coupling) sim.coupling->burnt_mass = mine[kBurntMass];
-  if (sim.ice) {
-    sim.ice->energy_fallbacks          = (PetscInt64)mine[kEnergyFallbacks];
-    sim.ice->energy_fallbacks_remap    = (PetscInt64)mine[kFallbackCounters];
-    sim.ice->energy_fallbacks_exchange = (PetscInt64)mine[kFallbackCounters + 1];
-    for (int k = 0; k < kIceFallbackClasses; ++k) sim.ice->energy_fallbacks_class[k] = (PetscInt64)mine[kFallbackCounters + 2 + k];
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const PetscInt         width = parts[i].values.Count(true);
+    std::vector<PetscReal> mine(width, 0);
+    for (PetscInt r = 0; r < saved_ranks; ++r)
+      if (saved_ranks == sim.size ? r == sim.rank : sim.rank == 0)
+        for (PetscInt k = 0; k < width; ++k) mine[k] += rows[i][(size_t)width * r + k];
+    parts[i].values.Unpack(false, values[i].data());
+    parts[i].values.Unpack(true, mine.data());
   }
-  if (sim.ice) {
-    IceBoundaryBudget &f = sim.ice->boundary;
-    f.mass               = mine[kBoundaryBudget];
-    for (int d = 0; d < 3; ++d) f.momentum[d] = mine[kBoundaryBudget + 1 + d];
-    f.energy = mine[kBoundaryBudget + 4];
-    f.work   = mine[kBoundaryBudget + 5];
-    for (int d = 0; d < 3; ++d) f.impulse[d] = mine[kBoundaryBudget + 6 + d];
-    for (int k = 0; k < 6; ++k) f.face_mass[k / 2][k % 2] = mine[kBoundaryFaceMass + k];
-    const auto diagnostics = sim.ice->EnergyDiagnostics();
-    for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) *diagnostics[k] = mine[kDragEnergyChange + k];
-  }
-  for (int d = 0; d < 3; ++d) {
-    sim.diag.removed_momentum[d] = mine[kRemovedMomentum + d];
-    sim.diag.bc_impulse[d]       = mine[kBcImpulse + d];
-  }
-  if (sim.coupling)
-    for (int k = 0; k < kNumCouplingCounters; ++k) sim.coupling->counters[k] = mine[kCouplingCounters + k];
   if (!sim.rank) { // the series continue (rank 0 holds them)
     sim.output.records.clear();
     for (PetscInt i = 0; i < nrec; ++i) sim.output.records.push_back({(PetscInt)rec[3 * i], rec[3 * i + 1], (PetscInt64)rec[3 * i + 2]});

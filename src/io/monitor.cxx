@@ -12,6 +12,7 @@
 #include "mpm/analytic.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
+#include "io/checkpoint_values.hpp"
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -613,6 +614,27 @@ PetscErrorCode WriteSummary(Simulation &sim)
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: temperature error rms %.4e K, max %.4e K\n", sim.analytic->Name(), (double)Trms, (double)Tmax));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+} // namespace burst
+
+namespace burst {
+
+void Diagnostics::Checkpoint(CheckpointValues &values)
+{
+  values.Global("initial_energy", &initial_energy);
+  values.Global("initial_kinetic", &initial_kinetic);
+  values.Global("max_error_displacement", &max_error_displacement);
+  values.Global("last_error_displacement", &last_error_displacement);
+  values.Global("budget_initial", budget_initial, 5);
+  values.Global("budget_scale", budget_scale, 3);
+  values.PerRank("external_work", &external_work);
+  values.PerRank("removed_energy", &removed_energy);
+  values.PerRank("viscous_work", &viscous_work);
+  values.PerRank("removed_mass", &removed_mass);
+  values.PerRank("removed_particles", &removed_particles);
+  values.PerRank("removed_momentum", removed_momentum, 3);
+  values.PerRank("bc_impulse", bc_impulse, 3);
 }
 
 } // namespace burst

@@ -11,6 +11,7 @@
 #include "../simulation.hpp"
 #include "grid_output.hpp"
 #include "run_lock.hpp"
+#include "checkpoint_values.hpp"
 #include <petscviewerhdf5.h>
 #include <array>
 #include <cstdio>
@@ -287,6 +288,12 @@ PetscErrorCode WriteOutput(Simulation &sim)
   if (sim.output.write_grid) PetscCall(WriteCollection(sim, "grid.xmf", true));
   PetscCall(PetscLogEventEnd(sim.output.ev_output, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Output::Checkpoint(CheckpointValues &values)
+{
+  values.Global("energy_scale", &energy_scale);
+  values.Global("track_pid", &track_pid); // (-monitor_track_point picks it at the start)
 }
 
 } // namespace burst

@@ -18,6 +18,8 @@ struct GasOutputRecord { // one entry of gas.xmf
   PetscReal time;
 };
 
+class CheckpointValues; // src/io/checkpoint_values.hpp
+
 struct Output {
   // options (src/options.cxx)
   std::string dir              = "output"; // -output_dir
@@ -37,6 +39,8 @@ struct Output {
   PetscLogDouble               last_progress = 0; // wall time of the last progress line
 
   PetscLogEvent ev_output = 0, ev_monitor = 0;
+
+  void Checkpoint(CheckpointValues &values); // its numbers' part of a checkpoint (output.cxx; the series are the checkpoint's own)
 };
 
 } // namespace burst

@@ -21,6 +21,7 @@
 #include "simulation.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
+#include "io/checkpoint_values.hpp"
 #include "mpm/fragments.hpp"
 #include <Eigen/Dense>
 #include <algorithm>
@@ -476,6 +477,16 @@ PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
   }
   (void)sim;
   PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+void Fragments::Checkpoint(CheckpointValues &values)
+{
+  values.Global("fracture_velocity", &fracture_velocity);
+  values.Global("fracture_time", &fracture_time);
+  values.Global("last_count", &last_count);
+  values.Global("initial_mass", &initial_mass);
+  values.Global("largest_mass", &largest_mass);
+  values.Global("total_intact_mass", &total_intact_mass);
 }
 
 } // namespace burst

@@ -19,6 +19,8 @@ struct FragmentOptions {
   PetscReal density = 0, youngs_modulus = 0, toughness = 0, specific_heat = 0, expansion = 0, diffusivity = 0, yield_stress = 0, shear_rate = 0;
 };
 
+class CheckpointValues; // src/io/checkpoint_values.hpp
+
 struct Fragments {
   FragmentOptions        options;
   PetscReal              fracture_velocity = -1, fracture_time = -1; // measured at the first failure
@@ -26,6 +28,7 @@ struct Fragments {
   PetscReal              initial_mass      = -1; // total mass at the first search
   PetscReal              largest_mass = 0, total_intact_mass = 0;
   std::vector<PetscReal> counted_masses; // rank 0: the counted fragments' masses at the last search, kg
+  void                   Checkpoint(CheckpointValues &values); // its part of a checkpoint (fragments.cxx)
 };
 
 } // namespace burst
