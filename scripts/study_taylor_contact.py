@@ -32,7 +32,7 @@ EXPERIMENT = {130: (19.56, 9.91), 146: (18.69, 10.67), 190: (16.21, 13.56)}
 
 
 def wall_options(cpd):
-    """The scene's grid (src/mpm/taylor.cxx) cut at the anvil's face, with a symmetry wall there."""
+    """The scene's grid (src/scenes/taylor.cxx) cut at the anvil's face, with a symmetry wall there."""
     h = D0 / cpd
     nl = max(1, round(L0 / h))
     hz = L0 / nl

@@ -13,7 +13,7 @@ static const char help[] = "burst: material point method (MPM) for metal contain
 #include "simulation.hpp"
 #include "step.hpp"
 #include "mpm/geometry.hpp"
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 #include "util.hpp"
 #include "options_check.hpp"
 #include "options_files.hpp"

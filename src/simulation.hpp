@@ -85,7 +85,7 @@ struct Geometry;
 // Heat conduction in the solids (src/mpm/heat_conduction.cxx), null unless -mpm_heat_conduction.
 struct HeatConduction;
 
-// The Taylor impact scene (src/mpm/taylor.cxx), null unless -taylor.
+// The Taylor impact scene (src/scenes/taylor.cxx), null unless -taylor.
 struct TaylorScene;
 
 // Simulation owns every component one way, a std::unique_ptr; the components only declared here
@@ -97,7 +97,7 @@ struct HeatDeleter {
   void operator()(HeatConduction *heat) const; // src/mpm/heat_conduction.cxx
 };
 struct TaylorSceneDeleter {
-  void operator()(TaylorScene *taylor) const; // src/mpm/taylor.cxx
+  void operator()(TaylorScene *taylor) const; // src/scenes/taylor.cxx
 };
 
 struct Grid {
@@ -286,7 +286,7 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
 // Axisymmetric MPM (src/mpm/axisymmetric.cxx): checks the grid (-dim 2, r >= 0, the axis a symmetry
 // face) and the features that do not support it; a no-op without -axisymmetric.
 PetscErrorCode AxisymmetricSetUp(Simulation &sim);
-// The Taylor impact scene (src/mpm/taylor.cxx): -taylor_* options become grid, material and geometry
+// The Taylor impact scene (src/scenes/taylor.cxx): -taylor_* options become grid, material and geometry
 // options (before anything reads them); at the end Lf, Df, the profile and the PNG data.
 PetscErrorCode TaylorSceneOptions(Simulation &sim);
 PetscErrorCode TaylorFinish(Simulation &sim);

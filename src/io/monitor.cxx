@@ -9,7 +9,7 @@
 // energy the burn released; its energy error is the run's balance error.
 #include "../simulation.hpp"
 #include "mpm/swarm_access.hpp"
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 #include "ice/ice.hpp"
 #include "coupling/coupling.hpp"
 #include "io/checkpoint_values.hpp"

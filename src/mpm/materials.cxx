@@ -2,7 +2,7 @@
 #include "simulation.hpp"
 #include "util.hpp"
 #include "mpm/geometry.hpp"
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 
 namespace burst {
 

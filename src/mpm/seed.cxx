@@ -7,7 +7,7 @@
 #include "mpm/material_state.hpp"
 #include "util.hpp"
 #include "memory.hpp"
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 #include <cmath>
 
 namespace burst {

@@ -1,7 +1,7 @@
 // Time step and external forces.
 #include "../simulation.hpp"
 #include "mpm/swarm_access.hpp"
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 

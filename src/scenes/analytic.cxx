@@ -1,4 +1,4 @@
-#include "mpm/analytic.hpp"
+#include "scenes/analytic.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include <cmath>

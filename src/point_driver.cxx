@@ -24,7 +24,7 @@
 #include "options_check.hpp"
 #include "mpm/material_state.hpp"
 #include "util.hpp"
-#include "expm.hpp"
+#include "mpm/expm.hpp"
 #include <cstdio>
 #include <memory>
 #include <vector>
