@@ -280,6 +280,13 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   }
   PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
   if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
+  ph.cell_ignition_temperature = PETSC_MAX_REAL;
+  for (size_t m = 0; m < sim.materials.size(); ++m) {
+    std::string burns;
+    PetscReal   T_burns = 0;
+    PetscCall(CouplingIgnition(sim, (PetscInt)m, &burns, &T_burns));
+    if (burns != "none") ph.cell_ignition_temperature = PetscMin(ph.cell_ignition_temperature, T_burns);
+  }
   if (ph.ignition_by_kinetics && !ph.kinetics) {
     ph.kinetics.reset(new ThermalDecomposition());
     PetscCall(ph.kinetics->SetFromOptions(sim.comm, sim.materials[ph.ignition_material]->Name()));
@@ -372,13 +379,31 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
   } else {
     // the burn model's own test on the cells: heat_only moves only the particles' temperatures, so
     // they are projected first (the heat-up's step projected them at its start)
+    bool check = true;
     if (ph.Current() == RunPhase::HeatOnly) {
-      PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-      PetscCall(CouplingProjectSolids(sim));
+      // Only the particles' temperatures change and the gas is held, and a cell's material
+      // temperature is a weighted mean of its particles' (the projection's weights are positive):
+      // no cell can newly ignite while every solid particle is below the burn models' ignition
+      // temperature. The projection and the cell test (a P2G and a pass over the cells, the most of
+      // a 3-D heat_only step) then wait, but for the first heat_only step (the held gas) and the
+      // output steps (the gas file's solid cells).
+      const bool output_due = (sim.output.interval > 0 && sim.step % sim.output.interval == 0) || sim.time >= sim.run.final_time * (1 - 1e-12) || sim.step >= sim.run.max_steps;
+      if (ph.heat_only_checked && !output_due && ph.cell_ignition_temperature > 0) {
+        std::vector<PetscReal> temperatures; // per material: the hottest particle, the mean
+        PetscCall(PhasesTemperatures(sim, temperatures));
+        PetscReal hottest = 0;
+        for (size_t m = 0; m < sim.materials.size(); ++m) hottest = PetscMax(hottest, temperatures[2 * m]);
+        check = !(hottest < ph.cell_ignition_temperature);
+      }
+      if (check) {
+        PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+        PetscCall(CouplingProjectSolids(sim));
+        ph.heat_only_checked = true;
+      }
     }
-    PetscInt64 cells;
+    PetscInt64 cells = 0;
     PetscReal  x[3];
-    PetscCall(CouplingIgnitingCells(sim, &cells, x, &ph.hottest_ignition));
+    if (check) PetscCall(CouplingIgnitingCells(sim, &cells, x, &ph.hottest_ignition));
     if (cells > 0) std::snprintf(why, sizeof(why), "ignition: the burn model's criterion holds in %lld cell(s); the hottest reactant surface cell, at (%g, %g, %g) m, is at %g K", (long long)cells, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition);
   }
   if (why[0]) {

@@ -70,6 +70,10 @@ struct Phases {
   PetscReal surface_heat_rate = 0; // W (per metre of depth in 2-D): sum_p G_p (T_f - T_p) at the window's end
   PetscReal hottest_ignition = 0;  // K: the criterion's temperature at the last check (particle or cell)
   bool      switched = false;      // this step ended a phase (the driver writes an output then)
+  // heat_only with the burn model's criterion: the lowest ignition temperature of the burning
+  // solids (0: one has none, every step is checked), and whether this heat_only has checked once
+  PetscReal cell_ignition_temperature = 0;
+  bool      heat_only_checked         = false;
 
   PetscReal mechanics_sound_speed_knob = 0; // the gas's own k, restored for mechanics
   PetscBool semi_implicit_gas = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one
