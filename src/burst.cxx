@@ -162,7 +162,7 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PetscLogStagePop());
   }
   PetscCall(PetscTime(&sim.wall_start));
-  for (bool done = false; !done && sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps;) {
+  for (bool done = false; !done && !sim.run.Reached(sim.time, sim.step);) {
     PetscCall(PetscTime(&t0));
     PetscCall(PetscLogStagePush(sim.stage_step));
     PetscCall(TakeStep(sim));
@@ -173,10 +173,10 @@ static PetscErrorCode Run(Simulation &sim)
     PetscCall(PhasesAfterStep(sim, &phases_done)); // a switch prints, checkpoints and changes the next step
     PetscCall(CheckRunStops(sim, &stop));
     stop = (PetscBool)(stop || phases_done);
-    const bool last = stop || !(sim.time < sim.run.final_time * (1 - 1e-12) && sim.step < sim.run.max_steps);
+    const bool last = stop || sim.run.Reached(sim.time, sim.step);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
-    if (last || sim.phases.switched || (sim.output.interval > 0 && sim.step % sim.output.interval == 0)) { // (and the state a phase ended with)
+    if (last || sim.phases.switched || sim.output.IntervalDue(sim.step)) { // (and the state a phase ended with)
       PetscCall(PetscLogStagePush(sim.stage_output));
       if (sim.HasParticles()) PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
       PetscCall(WriteAllOutput(sim, last));

@@ -387,7 +387,7 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
       // temperature. The projection and the cell test (a P2G and a pass over the cells, the most of
       // a 3-D heat_only step) then wait, but for the first heat_only step (the held gas) and the
       // output steps (the gas file's solid cells).
-      const bool output_due = (sim.output.interval > 0 && sim.step % sim.output.interval == 0) || sim.time >= sim.run.final_time * (1 - 1e-12) || sim.step >= sim.run.max_steps;
+      const bool output_due = sim.output.IntervalDue(sim.step) || sim.run.Reached(sim.time, sim.step);
       if (ph.heat_only_checked && !output_due && ph.cell_ignition_temperature > 0) {
         std::vector<PetscReal> temperatures; // per material: the hottest particle, the mean
         PetscCall(PhasesTemperatures(sim, temperatures));

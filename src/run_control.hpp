@@ -14,6 +14,9 @@ struct RunControl {
   PetscInt    max_steps             = PETSC_MAX_INT;
   PetscReal   energy_growth_limit   = 0; // stop with an error once the energy balance error exceeds this (0: never)
   PetscReal   stop_kinetic_fraction = 0; // stop once the kinetic energy falls below this fraction of its initial value (0: never)
+
+  // The run has reached -final_time or -max_steps.
+  bool Reached(PetscReal time, PetscInt step) const { return !(time < final_time * (1 - 1e-12) && step < max_steps); }
 };
 
 // At monitor steps: *stop once the kinetic energy is below -stop_kinetic_fraction of its initial

@@ -129,14 +129,10 @@ uint64_t DatasetSum(const std::string &path, PetscInt64 offset, const PetscScala
   return sum;
 }
 
-// Adds a Vec's local entries (held in PETSc's ordering = the file's for a plain Vec) to the checksum.
-PetscErrorCode ChecksumVec(Vec v, const std::string &path);
 } // namespace
 
-PetscErrorCode CheckpointChecksumVec(Vec v, const std::string &path) { return ChecksumVec(v, path); }
-
-namespace {
-PetscErrorCode ChecksumVec(Vec v, const std::string &path)
+// Adds a Vec's local entries (held in PETSc's ordering = the file's for a plain Vec) to the checksum.
+PetscErrorCode CheckpointChecksumVec(Vec v, const std::string &path)
 {
   PetscInt           lo, hi;
   const PetscScalar *a;
@@ -147,6 +143,8 @@ PetscErrorCode ChecksumVec(Vec v, const std::string &path)
   PetscCall(VecRestoreArrayRead(v, &a));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
+
+namespace {
 
 // Options that steer a run but not its physics: left out of the physics options.
 bool RunControlOption(const std::string &name)
@@ -480,7 +478,8 @@ PetscErrorCode CreateRootVec(const Simulation &sim, PetscInt n, const char name[
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-// Writes rank 0's values (the other ranks' are ignored); nothing when rank 0 has none.
+// Writes rank 0's values (the other ranks' are ignored) as /<group>/<name>; nothing when rank 0 has
+// none.
 PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const std::string &group, const char name[], const std::vector<PetscReal> &values, PetscInt *count = nullptr)
 {
   Vec          v;
@@ -495,8 +494,10 @@ PetscErrorCode WriteRootValues(const Simulation &sim, PetscViewer viewer, const 
   if (!sim.rank)
     for (size_t i = 0; i < values.size(); ++i) a[i] = values[i];
   PetscCall(VecRestoreArray(v, &a));
-  PetscCall(ChecksumVec(v, group + "/" + name));
+  PetscCall(CheckpointChecksumVec(v, group + "/" + name));
+  PetscCall(PetscViewerHDF5PushGroup(viewer, ("/" + group).c_str()));
   PetscCall(VecView(v, viewer));
+  PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(VecDestroy(&v));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -553,7 +554,7 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer viewer)
     }
     PetscCall(VecRestoreArray(v, &a));
     PetscCall(DMSwarmRestoreField(sim.swarm, name.c_str(), &bs, &type, &data));
-    PetscCall(ChecksumVec(v, "particles/" + name));
+    PetscCall(CheckpointChecksumVec(v, "particles/" + name));
     PetscCall(VecView(v, viewer));
     PetscCall(VecDestroy(&v));
   }
@@ -606,11 +607,9 @@ PetscErrorCode WritePart(Simulation &sim, PetscViewer viewer, const Part &part)
   std::vector<PetscReal>       rows(sim.rank ? 0 : mine.size() * sim.size);
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Gather(mine.data(), (int)mine.size(), MPIU_REAL, rows.data(), (int)mine.size(), MPIU_REAL, 0, sim.comm));
-  const std::string group = "/" + part.name, names = part.values.Names(false), rank_names = part.values.Names(true);
-  PetscCall(PetscViewerHDF5PushGroup(viewer, group.c_str()));
+  const std::string names = part.values.Names(false), rank_names = part.values.Names(true);
   PetscCall(WriteRootValues(sim, viewer, part.name, "values", part.values.Pack(false)));
   PetscCall(WriteRootValues(sim, viewer, part.name, "rank_values", rows));
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", (part.name + "_values").c_str(), PETSC_STRING, names.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", (part.name + "_rank_values").c_str(), PETSC_STRING, rank_names.c_str()));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -928,13 +927,8 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
     local_particles = n;
   }
   for (const Part &part : Parts(sim, &local_particles)) PetscCall(WritePart(sim, viewer, part));
-  if (sim.phases.Enabled()) {
-    PetscCall(PetscViewerHDF5PushGroup(viewer, "/phases"));
-    PetscCall(WriteRootValues(sim, viewer, "phases", "state", PhasesState(sim)));
-    PetscCall(PetscViewerHDF5PopGroup(viewer));
-  }
+  if (sim.phases.Enabled()) PetscCall(WriteRootValues(sim, viewer, "phases", "state", PhasesState(sim)));
   // the output series (rank 0's)
-  PetscCall(PetscViewerHDF5PushGroup(viewer, "/output"));
   std::vector<PetscReal> flat;
   for (const OutputRecord &r : sim.output.records) flat.insert(flat.end(), {(PetscReal)r.step, r.time, (PetscReal)r.particles});
   PetscInt nrec;
@@ -945,7 +939,6 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscInt ngas;
   PetscCall(WriteRootValues(sim, viewer, "output", "gas_records", flat, &ngas));
   ngas /= 2;
-  PetscCall(PetscViewerHDF5PopGroup(viewer));
   // what a restart checks
   const std::string solids = SolidNames(sim), gases = GasNames(sim);
   const PetscInt    cells[3] = {sim.grid.cells[0], sim.grid.cells[1], sim.grid.dim == 3 ? sim.grid.cells[2] : 1};

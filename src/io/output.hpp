@@ -40,6 +40,7 @@ struct Output {
 
   PetscLogEvent ev_output = 0, ev_monitor = 0;
 
+  bool IntervalDue(PetscInt step) const { return interval > 0 && step % interval == 0; } // an output step of -output_interval
   void Checkpoint(CheckpointValues &values); // its numbers' part of a checkpoint (output.cxx; the series are the checkpoint's own)
 };
 
