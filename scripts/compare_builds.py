@@ -79,8 +79,8 @@ def summary_fields(d, prefix=""):
 
 
 def compare(a, b, allow_new=False):
-    """The first difference between two output folders, or None (with allow_new, summary fields that
-    only the new build writes are no difference)."""
+    """The first difference between two output folders, or None (with allow_new, summary fields and
+    monitor columns that only the new build writes are no difference)."""
     sa, sb = os.path.join(a, "summary.json"), os.path.join(b, "summary.json")
     if os.path.exists(sa) != os.path.exists(sb):
         return "summary.json: written by one build only"
@@ -97,6 +97,9 @@ def compare(a, b, allow_new=False):
             if not (os.path.exists(pa) and os.path.exists(pb)):
                 return f"{name}: written by one build only"
             ra, rb = list(csv.reader(open(pa))), list(csv.reader(open(pb)))
+            if allow_new and ra and rb and ra[0] != rb[0] and set(ra[0]) <= set(rb[0]):
+                keep = [rb[0].index(c) for c in ra[0]]  # the columns both write
+                rb = [[row[k] for k in keep] for row in rb]
             if ra != rb:
                 return f"{name} differs"
     for stem in ("particles", "grid", "gas"):

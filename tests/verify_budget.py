@@ -93,6 +93,8 @@ def transfers(s):
         print(f"    {name:62s} {value:+13.6g} {value / scale:+.4f}")
     print(f"    (of the exchange: the drag's kinetic energy not given back as heat {e['drag_energy_change']:+.6g}, its temperature-form fallbacks"
           f" {e['exchange_fallback_energy']:+.6g})")
+    if e.get("solid_cell_energy_transfer"):
+        print(f"    (-ice_solid_cell_energy: the gases of solids' cells handed their solids {e['solid_cell_energy_transfer']:+.6g} as heat, a transfer in no part)")
     own = e["particles_kinetic"] + e["particles_internal"] + e["burnt_particles"] + e["removed_particles"] - e["kinetic_to_nodes"] - e["external_work"] - e["ambient_stress_work"]
     print(f"    (of the pressure work: no gas in its cell could pay {e['pressure_work_held']:+.6g})")
     print(f"    (the rest: the particles' kinetic energy + stress work beyond the gas's increments at the nodes and the (p - p_ref) I work {own:+.6g},"

@@ -370,6 +370,64 @@ def piston(args):
     finish("piston", failures)
 
 
+def gun(args):
+    """Lagrange's ballistic problem (tests/decks/gas_gun.opts): a gas column drives a free piston.
+    Until the reflected rarefaction returns, sigma dv/dt = p0 (1 - (gamma-1) v/(2 c0))^(2 gamma/(gamma-1))
+    - p_ahead(v), p_ahead the pressure behind the shock the piston drives into the thin gas ahead.
+    Each --cells level runs the tube one cell wide; every level must reach the window's end, follow
+    the exact velocity within --tol and close its energy budget within --energy-tol."""
+    deck = "tests/decks/gas_gun.opts"
+    o = options(deck)
+    gamma = float(o["-air_gamma"])
+    rho0, _, p0 = (float(v) for v in o["-ice_riemann_left"].split(","))
+    rho1, _, p1 = (float(v) for v in o["-ice_riemann_right"].split(","))
+    c0, c1 = math.sqrt(gamma * p0 / rho0), math.sqrt(gamma * p1 / rho1)
+    h0 = float(o["-ice_riemann_position"])
+    length = float(o["-grid_upper"].split(",")[0])
+    back, front = float(o["-block_lower"].split(",")[0]), float(o["-block_upper"].split(",")[0])
+    sigma = float(o["-piston_density"]) * (front - back)  # kg/m^2
+
+    def force(v):  # per unit of the piston's mass
+        behind = p0 * max(1 - 0.5 * (gamma - 1) * v / c0, 0.0) ** (2 * gamma / (gamma - 1))
+        m = v / c1  # a steady piston-driven shock into the thin gas ahead
+        ahead = p1 * (1 + gamma * (gamma + 1) / 4 * m * m + gamma * m * math.sqrt(1 + ((gamma + 1) / 4 * m) ** 2))
+        return (behind - ahead) / sigma
+
+    # the exact velocity (RK4, 10 ns steps) to the window's end: the rarefaction's head reaches the
+    # closed end at h0/c0 and comes back at most at c0 + (3 - gamma)/2 v
+    te, ve, dt = [0.0], [0.0], 1e-8
+    while te[-1] < 2 * h0 / c0:
+        w = ve[-1]
+        k1 = force(w); k2 = force(w + 0.5 * dt * k1); k3 = force(w + 0.5 * dt * k2); k4 = force(w + dt * k3)
+        ve.append(w + dt / 6 * (k1 + 2 * k2 + 2 * k3 + k4)); te.append(te[-1] + dt)
+    te, ve = np.array(te), np.array(ve)
+    window = h0 / c0 + h0 / (c0 + 0.5 * (3 - gamma) * np.interp(2 * h0 / c0, te, ve))
+    print(f"gun: p0 {p0:.6g} Pa, c0 {c0:.1f} m/s, h0 {h0} m, piston {sigma:g} kg/m^2; exact until the reflected rarefaction, t <= {window:.4e} s"
+          f" (piston velocity {np.interp(window, te, ve):.4f} m/s, {np.interp(window, te, ve) / c0:.3f} c0)")
+    failures = []
+    for cells in args.cells:
+        width = length / cells
+        out = scratch()
+        s = run(args.burst, deck, out, ["-grid_cells", f"{cells},1", "-grid_upper", f"{length},{width!r}", "-block_upper", f"{front},{width!r}",
+                                        "-final_time", repr(window * 1.02)] + args.extra.split(), ranks=args.ranks)
+        mon = monitor(out)
+        t, v = mon["time"], mon["momentum_x"] / mon["mass"]
+        print(f"  {cells} cells of {1e3 * width:.4g} mm: {s['steps']} steps to t = {t[-1]:.4e} s")
+        check(f"{cells} cells: the run reaches the window's end (s short of it)", max(window - t[-1], 0.0), 0.0, failures)
+        keep = (t > 0) & (t <= window)
+        exact = np.interp(t[keep], te, ve)
+        for q in np.linspace(0.25, 1.0, 4) * window:
+            a, b = np.interp(q, t, v), np.interp(q, te, ve)
+            print(f"    t {q:.4e} s: piston velocity {a:9.4f} m/s, exact {b:9.4f} ({a / b - 1:+.3%})")
+        end = np.interp(window, t, v) / np.interp(window, te, ve)
+        e = s["budget"]["energy"]
+        print(f"    kinetic energy at the window's end {end ** 2 - 1:+.3%} of the exact; energy budget residual {e['residual']:+.4g} J"
+              f" ({e['error']:.2e} of the largest term)")
+        check(f"{cells} cells: max |v - v_exact| / v_exact(window's end)", np.abs(v[keep] - exact).max() / np.interp(window, te, ve), args.tol, failures)
+        check(f"{cells} cells: |energy budget residual| / largest term", abs(e["error"]), args.energy_tol, failures)
+    finish("gun", failures)
+
+
 # ---------------------------------------------------------------------------------------------
 # parallel
 
@@ -524,6 +582,12 @@ def main():
     pi.add_argument("--final-time", type=float, default=4e-3)
     pi.add_argument("--tol", type=float, default=2.5e-2)
     pi.add_argument("--extra", default="", help="more options for burst")
+    gu = sub.add_parser("gun")
+    gu.add_argument("--cells", type=lambda x: [int(c) for c in x.split(",")], default=[120, 240], help="cells along the tube, comma-separated")
+    gu.add_argument("--tol", type=float, default=1.5e-2)
+    gu.add_argument("--energy-tol", type=float, default=1e-3)
+    gu.add_argument("--ranks", type=int, default=1)
+    gu.add_argument("--extra", default="", help="more options for burst")
     pa = sub.add_parser("parallel")
     pa.add_argument("--pressure", type=float, default=1e7)
     pa.add_argument("--steps", type=int, default=200)
@@ -548,7 +612,7 @@ def main():
     bs.add_argument("--final-time", type=float, default=1e-4)
     bs.add_argument("--tol", type=float, default=1e-6)
     args = p.parse_args()
-    {"rest": rest, "squeeze": squeeze, "lame": lame, "piston": piston, "parallel": parallel, "burn": burn, "burn_symmetry": burn_symmetry, "exploding": exploding}[args.cmd](args)
+    {"rest": rest, "squeeze": squeeze, "lame": lame, "piston": piston, "gun": gun, "parallel": parallel, "burn": burn, "burn_symmetry": burn_symmetry, "exploding": exploding}[args.cmd](args)
 
 
 if __name__ == "__main__":

@@ -145,6 +145,7 @@ struct IceSolver {
   PetscBool compatible_fluxes = PETSC_TRUE;
   PetscBool conservative_energy = PETSC_TRUE; // Lagrangian energy from face-pressure work (total energy)
   PetscBool drag_heating = PETSC_TRUE;         // with conservative_energy: the drag's dissipated kinetic energy becomes heat
+  PetscBool solid_cell_energy = PETSC_FALSE;    // with conservative_energy and drag heating: a gas in a solid's cell gets its compression work and the work at the centre-of-mass velocity; the face work's excess goes to the solids (sources.cxx)
   PetscBool mixed_cell_energy = PETSC_TRUE;    // with conservative_energy: in a cell of several gases each gets its own kinetic and compression energy, and their face works' excess is shared by heat capacity (sources.cxx)
   PetscBool advect_total_energy = PETSC_TRUE; // remap total energy (kinetic energy lost becomes heat)
   PetscReal viscosity[2] = {0.5, 1};          // shock viscosity c1 (linear), c2 (quadratic), viscosity.cxx
@@ -226,15 +227,16 @@ struct IceSolver {
   PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
   PetscReal advection_energy_change = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
   PetscReal fallback_energy_change = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
+  PetscReal solid_cell_energy_transfer = 0; // J, this rank: what IceSolidCellEnergy moved from the gases of solids' cells to the solids (sources.cxx)
   PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
   PetscReal equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
   PetscReal gas_energy_mark = 0;             // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
-  // The nine energy diagnostics above in one fixed order, for the monitor's reduction and the
+  // The ten energy diagnostics above in one fixed order, for the monitor's reduction and the
   // checkpoint (both keep them in this order).
-  static constexpr int kEnergyDiagnostics = 9;
+  static constexpr int kEnergyDiagnostics = 10;
   std::array<PetscReal *, kEnergyDiagnostics> EnergyDiagnostics()
   {
-    return {&drag_energy_change, &solid_pressure_work, &gas_interface_work, &advection_energy_change, &fallback_energy_change, &trace_energy_change, &equilibration_energy_change, &exchange_energy_change, &exchange_fallback_energy};
+    return {&drag_energy_change, &solid_pressure_work, &gas_interface_work, &advection_energy_change, &fallback_energy_change, &trace_energy_change, &equilibration_energy_change, &exchange_energy_change, &exchange_fallback_energy, &solid_cell_energy_transfer};
   }
   // The advection's face loop adds its domain-face fluxes here while IceAdvect advects a gas (null
   // otherwise: the pressure's volume fluxes are not a budget); IceBudgetOpenFaces books them.
@@ -333,6 +335,7 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
+void           IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx);
 // Whether gas m is a trace in the cell c: below -ice_trace_fraction of its volume, or below
 // -ice_trace_mass of the cell's mass (a remnant at the rho_tiny level that has expanded past the
 // volume bound: doc/gas.md, the water-air tube)

@@ -168,6 +168,7 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
       ice.viscosity[1] = v[1];
     }
   }
+  PetscCall(PetscOptionsBool("-ice_solid_cell_energy", "With -ice_conservative_energy and -ice_drag_heating: a gas in a cell that holds a solid gets its own compression work and the pressure source's work at the cell's centre-of-mass velocity (the drag holds it there); what its face work holds beyond those goes to the solids as heat, so that no gas there falls back to the temperature form (false: the face work's; doc/gas.md)", "", ice.solid_cell_energy, &ice.solid_cell_energy, nullptr));
   PetscCall(PetscOptionsBool("-ice_mixed_cell_energy", "With -ice_conservative_energy: in a cell that holds several gases, each gets the kinetic energy of its own momentum source and its own compression work; what the cell's face work holds beyond those is shared by heat capacity (false: each gas gets the work of its own face fluxes)", "", ice.mixed_cell_energy, &ice.mixed_cell_energy, nullptr));
   PetscCall(PetscOptionsBool("-ice_drag_heating", "With -ice_conservative_energy: the kinetic energy that the momentum exchange removes becomes heat of the cell's materials (false: dropped, as the reference does)", "", ice.drag_heating, &ice.drag_heating, nullptr));
   PetscCall(PetscOptionsBool("-ice_advect_total_energy", "Advect total energy c_v T + |u|^2/2 instead of c_v T, so the kinetic energy the remap averages away becomes heat (the reference advects c_v T only)", "", ice.advect_total_energy, &ice.advect_total_energy, nullptr));

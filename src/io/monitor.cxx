@@ -171,6 +171,7 @@ struct Budget {
   PetscReal solid_pressure_work = 0; // the kinetic energy the cells' pressure source gives the solids (not in the sums)
   PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
   PetscReal advection_energy_change = 0; // the gases' energy the advection did not conserve (not in the sums)
+  PetscReal solid_cell_energy_transfer = 0;                      // the gases of solids' cells to their solids (sources.cxx)
   PetscReal fallback_energy_change = 0, trace_energy_change = 0; // and the sources: -p dV fallbacks, traces (not in the sums)
   PetscReal equilibration_energy_change = 0;                      // and the equilibration (not in the sums)
   PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0; // and the exchange: all of it, its fallbacks' part (the drag's above)
@@ -187,7 +188,7 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kCoupling = 25, kFaceMass = kCoupling + kNumCouplingCounters, kCount = kFaceMass + 6 };
+  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kSolidCell = 25, kCoupling = 26, kFaceMass = kCoupling + kNumCouplingCounters, kCount = kFaceMass + 6 };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
@@ -238,7 +239,10 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.solid_pressure_work     = global[kPressureWork];
   b.gas_interface_work      = global[kInterfaceWork];
   b.advection_energy_change = global[kAdvection];
-  b.fallback_energy_change  = global[kFallback];
+  // IceBudgetFaces counts what IceSolidCellEnergy moved from a gas to its cell's solids as made by
+  // the sources; it is a transfer (the solids' heat_to_solid_cells has it)
+  b.solid_cell_energy_transfer = global[kSolidCell];
+  b.fallback_energy_change  = global[kFallback] + global[kSolidCell];
   b.trace_energy_change     = global[kTrace];
   b.equilibration_energy_change = global[kEquilibration];
   b.exchange_energy_change      = global[kExchange];
@@ -341,7 +345,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                         ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                         ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                         ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,ambient_stress_work,pressure_work_charged,pressure_work_held");
+                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,solid_cell_energy_transfer,ambient_stress_work,pressure_work_charged,pressure_work_held");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     if (sim.phases.Enabled()) { // the fire's histories (src/phases.hpp)
       std::fprintf(csv, ",phase");
@@ -415,7 +419,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
       std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
-      std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy, (double)b.solid_cell_energy_transfer);
       std::fprintf(csv, ",%.16e,%.16e,%.16e", (double)b.ambient_stress_work, (double)b.pressure_work_charged, (double)b.pressure_work_held);
     }
     if (expansion) std::fprintf(csv, ",%.12e", (double)expansion_velocity);
@@ -568,7 +572,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
     s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
-    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"burnt_particles\": " << b.burnt_particle_energy;
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"solid_cell_energy_transfer\": " << b.solid_cell_energy_transfer << ", \"burnt_particles\": " << b.burnt_particle_energy;
     s << ", \"ambient_stress_work\": " << b.ambient_stress_work << ", \"pressure_work_charged\": " << b.pressure_work_charged << ", \"pressure_work_held\": " << b.pressure_work_held << "}\n";
     s << "  },\n";
   }
