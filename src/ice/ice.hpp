@@ -227,7 +227,7 @@ struct IceSolver {
   PetscReal gas_interface_work = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
   PetscReal advection_energy_change = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
   PetscReal fallback_energy_change = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
-  PetscReal solid_cell_energy_transfer = 0; // J, this rank: what IceSolidCellEnergy moved from the gases of solids' cells to the solids (sources.cxx)
+  PetscReal solid_cell_energy_transfer = 0; // J, this rank: what IceSolidCellEnergy moved from the gases of solids' cells to the solids (sources.cxx; IceBudgetFaces sees it in fallback_energy_change, and the monitor adds it back there)
   PetscReal trace_energy_change = 0;     // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
   PetscReal equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
   PetscReal gas_energy_mark = 0;             // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
@@ -335,7 +335,6 @@ void           IceAdvectionIncrement(IceSolver &ice, const PetscScalar *a, Petsc
 // c_v dT = theta kappa (T dP/dT + dp_dil) dp_dil, with the converted mass's energy (sources.cxx; the
 // total-energy form's fallback); *cold_L (if not null, for a cold energy) its e_cold, J/kg.
 PetscReal      IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L);
-void           IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx);
 // Whether gas m is a trace in the cell c: below -ice_trace_fraction of its volume, or below
 // -ice_trace_mass of the cell's mass (a remnant at the rho_tiny level that has expanded past the
 // volume bound: doc/gas.md, the water-air tube)

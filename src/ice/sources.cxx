@@ -74,7 +74,7 @@ PetscReal IceFacePressure(const IceSolver &ice, const PetscScalar *a, PetscInt L
 // cell, 12.5 % of the chemical energy by 30 us, most of which stays in the particles as heat, and the
 // wall's kinetic energy falls by 9.5 %; the gas gun (tests/decks/gas_gun.opts) moves by 0.1 % with
 // it (doc/gas.md, "Energy fallbacks").
-void IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx)
+static void IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx)
 {
   const PetscInt n = ice.nmat, dim = ice.dim;
   PetscReal      mass = 0, momentum[3] = {0, 0, 0}, u_cm[3] = {0, 0, 0};
