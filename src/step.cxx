@@ -22,6 +22,11 @@
 //   cells -> gas sources -> cell exchange -> surface heat -> pressure force and exchange back to the nodes -> the
 //   gases pay the pressure's work on the solids -> G2P -> exchange heat to the particles -> stress ->
 //   migrate -> heat conduction -> gas advection
+//   With MUSL the particles' L comes from v_new, the nodal velocity whose divergence the gas's
+//   pressure solve and sources were given, and only their positions from the remapped velocity: L
+//   from the remap deforms a solid by another velocity than the one the gas sharing its cells saw,
+//   and the cell a solid leaves goes unstable once -mpm_cfl c_solid / c_gas exceeds about 7
+//   (doc/coupling.md, the gas gun).
 //
 // A run in phases (src/phases.hpp; a container in a fire) takes two more steps before its mechanics:
 //   heatup:    P2G(m, mv) -> nodal velocities (zero: the solids are held still) -> solids to cells
@@ -121,8 +126,9 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(CouplingChargePressureWork(sim));
   if (sim.scheme == StepScheme::MUSL) {
     PetscCall(RemapMomentum(sim));
+    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
     PetscCall(GridVelocityFromMomentum(sim));
-    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
   } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
   PetscCall(CouplingHeatToParticles(sim));
   PetscCall(UpdateStress(sim));
