@@ -40,17 +40,17 @@ static PetscErrorCode RegisterLogging(Simulation &sim)
   PetscCall(PetscLogStageRegister("Output", &sim.stage_output));
   PetscClassId id;
   PetscCall(PetscClassIdRegister("burst", &id));
-  PetscCall(PetscLogEventRegister("MPM_P2G", id, &sim.ev_p2g));
-  PetscCall(PetscLogEventRegister("MPM_GhostSums", id, &sim.ev_ghost_sums)); // (inside MPM_P2G and MPM_Remap, several ranks: the sums onto the owners, with the wait for the other ranks)
-  PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.ev_grid));
-  PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.ev_g2p));
-  PetscCall(PetscLogEventRegister("MPM_XPIC", id, &sim.ev_xpic));
-  PetscCall(PetscLogEventRegister("MPM_Remap", id, &sim.ev_remap));
-  PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.ev_stress));
-  PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.ev_migrate));
-  PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.ev_dt));
+  PetscCall(PetscLogEventRegister("MPM_P2G", id, &sim.mpm.ev_p2g));
+  PetscCall(PetscLogEventRegister("MPM_GhostSums", id, &sim.mpm.ev_ghost_sums)); // (inside MPM_P2G and MPM_Remap, several ranks: the sums onto the owners, with the wait for the other ranks)
+  PetscCall(PetscLogEventRegister("MPM_GridUpdate", id, &sim.mpm.ev_grid));
+  PetscCall(PetscLogEventRegister("MPM_G2P", id, &sim.mpm.ev_g2p));
+  PetscCall(PetscLogEventRegister("MPM_XPIC", id, &sim.mpm.ev_xpic));
+  PetscCall(PetscLogEventRegister("MPM_Remap", id, &sim.mpm.ev_remap));
+  PetscCall(PetscLogEventRegister("MPM_Stress", id, &sim.mpm.ev_stress));
+  PetscCall(PetscLogEventRegister("MPM_Migrate", id, &sim.mpm.ev_migrate));
+  PetscCall(PetscLogEventRegister("MPM_TimeStep", id, &sim.mpm.ev_dt));
   PetscCall(PetscLogEventRegister("MPM_Monitor", id, &sim.output.ev_monitor));
-  PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.ev_loads));
+  PetscCall(PetscLogEventRegister("MPM_Loads", id, &sim.mpm.ev_loads));
   PetscCall(PetscLogEventRegister("MPM_Output", id, &sim.output.ev_output));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -67,34 +67,48 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(RunLockSetUp(sim)); // the lock itself is taken when the output folder is set up
   // 2. Materials (they decide the velocity fields of the grid), the grid, load curves and the
   //    geometry objects that seed particles
-  PetscCall(CreateMaterials(sim));
-  PetscCall(CreateGrid(sim));
-  PetscCall(AxisymmetricSetUp(sim));
-  PetscCall(FragmentsSetUp(sim));
-  PetscCall(ReadLoadCurves(sim));
-  PetscCall(ReadGeometries(sim));
-  PetscCall(HeatConductionSetUp(sim));
+  PetscCall(CreateMaterials(sim.mpm));
+  PetscCall(CreateGrid(sim.mpm));
+  PetscCall(AxisymmetricSetUp(sim.mpm));
+  PetscCall(FragmentsSetUp(sim.mpm));
+  PetscCall(ReadLoadCurves(sim.mpm));
+  PetscCall(ReadGeometries(sim.mpm));
+  PetscCall(HeatConductionSetUp(sim.mpm));
   PetscCall(PhasesSetUp(sim)); // before the swarm: the heat-up's measurement has fields of its own
   PetscCall(CreateAnalyticSolution(sim));
-  PetscCheck(sim.help || !sim.convert_failed || SwarmHasModelField(sim, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
+  sim.mpm.surface_heat_fields = sim.phases.Enabled() ? PETSC_TRUE : PETSC_FALSE;
+  if (sim.analytic && sim.analytic->HasBodyForce()) {
+    const AnalyticSolution *analytic = sim.analytic.get();
+    sim.mpm.body_force = [analytic](const PetscReal X[], PetscReal t, PetscReal b[]) { analytic->BodyForce(X, t, b); };
+  }
+  // a last picture of the particles when a check finds them invalid, named after the failed step
+  sim.mpm.write_snapshot = [&sim](PetscInt step) -> PetscErrorCode {
+    const PetscInt saved = sim.step;
+    PetscFunctionBeginUser;
+    sim.step = step;
+    PetscCall(WriteOutput(sim));
+    sim.step = saved;
+    PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output.dir.c_str(), (int)step));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  };  PetscCheck(sim.help || !sim.mpm.convert_failed || SwarmHasModelField(sim.mpm, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
   // 3. The gas's view of the solids (the coupling's equations of state); the swarm registers the
   //    ambient pressure that the coupling asks for
-  const Grid &g   = sim.grid;
+  const Grid &g   = sim.mpm.grid;
   const bool  gas = IceMaterialsRequested(sim.comm);
-  IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.gravity[0], sim.gravity[1], sim.gravity[2]}, g.da_nodes, {}, sim.axisymmetric == PETSC_TRUE};
-  if (!sim.materials.empty() && gas) PetscCall(CouplingSolidMaterials(sim, spec.solids));
+  IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.mpm.gravity[0], sim.mpm.gravity[1], sim.mpm.gravity[2]}, g.da_nodes, {}, sim.mpm.axisymmetric == PETSC_TRUE};
+  if (!sim.mpm.materials.empty() && gas) PetscCall(CouplingSolidMaterials(sim, spec.solids));
   // the gas grid copies the node ranges when it is created, after the start-up balance
   PetscCheck(!gas || !g.balance || g.balance_interval == 0, sim.comm, PETSC_ERR_SUP, "Option -grid_balance_interval = %" PetscInt_FMT " is not available with gases (-ice_materials): the gas grid is balanced at start-up only; use -grid_balance_interval 0", g.balance_interval);
-  sim.grid.balance_with_gas = gas;
-  PetscCheck(sim.help || !sim.materials.empty() || gas, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
+  sim.mpm.grid.balance_with_gas = gas;
+  PetscCheck(sim.help || !sim.mpm.materials.empty() || gas, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
   // 4. Particles, when the scene has solids (-grid_balance sets the node ranges from their work here)
-  if (!sim.help && !sim.materials.empty()) {
-    PetscCall(CreateSwarm(sim));
-    PetscCall(SeedParticles(sim));
+  if (!sim.help && !sim.mpm.materials.empty()) {
+    PetscCall(CreateSwarm(sim.mpm));
+    PetscCall(SeedParticles(sim.mpm));
     PetscCall(ApplyAnalyticInitialCondition(sim));
-    PetscCall(MigrateParticles(sim));
-    PetscCall(ComputeInitialWaveSpeed(sim));
-    PetscCall(CheckParticleState(sim, "seeding"));
+    PetscCall(MigrateParticles(sim.mpm));
+    PetscCall(ComputeInitialWaveSpeed(sim.mpm));
+    PetscCall(CheckParticleState(sim.mpm, "seeding"));
   }
   // 5. The gas, on cells of the same grid and the same ranks' ranges (null without -ice_materials)
   {
@@ -102,6 +116,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     IceSolver *ice = nullptr;
     PetscCall(IceCreate(sim.comm, spec, sim.help, &ice));
     sim.ice.reset(ice);
+    sim.mpm.grid.ranges_copied = sim.ice != nullptr;
     if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(sim));
     if (!sim.ice) sim.coupling.reset();
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
@@ -114,6 +129,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   if (sim.coupling) PetscCall(CouplingSetUp(sim));
   PetscCall(OutputSetUp(sim));
   PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones
+  SetMpmClock(sim);
   PetscCall(PhasesCheck(sim));       // the phase the run starts in (a checkpoint's, or the first of -phases)
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -122,14 +138,14 @@ static PetscErrorCode SetUp(Simulation &sim)
 static PetscErrorCode View(Simulation &sim)
 {
   PetscViewer viewer = PETSC_VIEWER_STDOUT_(sim.comm);
-  const Grid &g      = sim.grid;
+  const Grid &g      = sim.mpm.grid;
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "burst: scene %s, %" PetscInt_FMT "-D, %d rank(s)\n", sim.run.scene.c_str(), g.dim, sim.size));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1], g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.shape], StepSchemeNames[(int)sim.scheme], (double)sim.flip_fraction, FUpdateNames[(int)sim.f_update], (double)sim.cfl, (double)sim.run.final_time));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.total_particles));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.mpm.shape], StepSchemeNames[(int)sim.mpm.scheme], (double)sim.mpm.flip_fraction, FUpdateNames[(int)sim.mpm.f_update], (double)sim.mpm.cfl, (double)sim.run.final_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.mpm.total_particles));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  run %s%s\n", CheckpointRunId().c_str(), sim.restarted ? " (continued from its checkpoint)" : ""));
-  for (auto &m : sim.materials) PetscCall(m->View(viewer));
+  for (auto &m : sim.mpm.materials) PetscCall(m->View(viewer));
   if (sim.ice) PetscCall(IceView(*sim.ice, viewer));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -141,7 +157,7 @@ static PetscErrorCode WriteAllOutput(Simulation &sim, bool last)
   PetscFunctionBeginUser;
   if (sim.HasParticles()) PetscCall(WriteOutput(sim));
   if (sim.ice) PetscCall(WriteGasOutput(sim));
-  if (sim.ice && sim.grid.cells[1] == 1 && (sim.grid.dim == 2 || sim.grid.cells[2] == 1)) {
+  if (sim.ice && sim.mpm.grid.cells[1] == 1 && (sim.mpm.grid.dim == 2 || sim.mpm.grid.cells[2] == 1)) {
     char name[64];
     PetscCall(PetscSNPrintf(name, sizeof(name), "/profile_%06" PetscInt_FMT ".csv", sim.step));
     PetscCall(IceWriteProfile(*sim.ice, sim.output.dir + name, sim.time, sim.step));
@@ -175,10 +191,10 @@ static PetscErrorCode Run(Simulation &sim)
     stop = (PetscBool)(stop || phases_done);
     const bool last = stop || sim.run.Reached(sim.time, sim.step);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
-    if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim));
+    if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim.mpm));
     if (last || sim.phases.switched || sim.output.IntervalDue(sim.step)) { // (and the state a phase ended with)
       PetscCall(PetscLogStagePush(sim.stage_output));
-      if (sim.HasParticles()) PetscCall(FindFragments(sim, last ? PETSC_TRUE : PETSC_FALSE));
+      if (sim.HasParticles()) PetscCall(FindFragments(sim.mpm, last ? (sim.output.dir + "/fragments.csv").c_str() : nullptr));
       PetscCall(WriteAllOutput(sim, last));
       PetscCall(PetscLogStagePop());
     }
@@ -216,6 +232,10 @@ static PetscErrorCode Main(Simulation &sim)
   PetscCallMPI(MPI_Comm_rank(sim.comm, &sim.rank));
   PetscCallMPI(MPI_Comm_size(sim.comm, &sim.size));
   PetscCall(PetscOptionsHasHelp(nullptr, &sim.help));
+  sim.mpm.comm = sim.comm;
+  sim.mpm.rank = sim.rank;
+  sim.mpm.size = sim.size;
+  sim.mpm.help = sim.help;
   PetscCall(OptionsCheckBegin(sim.comm)); // records what set-up reads, for the unused-option check
   int mode = 0;
   PetscOptionsBegin(sim.comm, "", "burst", "Mode");

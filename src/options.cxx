@@ -31,61 +31,61 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-final_time", sim.run.final_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-max_steps", "Stop after this many steps (default: no limit)", "", sim.run.max_steps, &sim.run.max_steps, nullptr));
   PetscCheck(sim.run.max_steps >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -max_steps = %" PetscInt_FMT " is out of range: it must be >= 0", sim.run.max_steps);
-  PetscCall(PetscOptionsReal("-mpm_cfl", "Courant number: dt = cfl min_p min_d h_d/(c_p + |v_p,d|), in (0, 1]", "", sim.cfl, &sim.cfl, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_cfl", sim.cfl, 0, 1, PETSC_TRUE));
-  PetscCall(PetscOptionsReal("-mpm_dt_max", "Largest time step (s), > 0 (default: none)", "", sim.dt_max, &sim.dt_max, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_dt_max", sim.dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
-  PetscCall(PetscOptionsReal("-mpm_dt", "Fixed time step (s) instead of the CFL rule; 0 = use the CFL rule", "", sim.dt_fixed, &sim.dt_fixed, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_dt", sim.dt_fixed, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-mpm_cfl", "Courant number: dt = cfl min_p min_d h_d/(c_p + |v_p,d|), in (0, 1]", "", sim.mpm.cfl, &sim.mpm.cfl, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_cfl", sim.mpm.cfl, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-mpm_dt_max", "Largest time step (s), > 0 (default: none)", "", sim.mpm.dt_max, &sim.mpm.dt_max, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_dt_max", sim.mpm.dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-mpm_dt", "Fixed time step (s) instead of the CFL rule; 0 = use the CFL rule", "", sim.mpm.dt_fixed, &sim.mpm.dt_fixed, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_dt", sim.mpm.dt_fixed, 0, PETSC_MAX_REAL, PETSC_FALSE));
 
-  choice = (int)sim.scheme;
+  choice = (int)sim.mpm.scheme;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_scheme", "Order of stress update and grid update in a step", StepSchemeNames, 3, &choice, nullptr));
-  sim.scheme = (StepScheme)choice;
-  PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.flip_fraction, &sim.flip_fraction, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.flip_fraction, 0, 1, PETSC_FALSE));
-  choice = (int)sim.transfer;
+  sim.mpm.scheme = (StepScheme)choice;
+  PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.mpm.flip_fraction, &sim.mpm.flip_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.mpm.flip_fraction, 0, 1, PETSC_FALSE));
+  choice = (int)sim.mpm.transfer;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_transfer", "Particle velocity transfer: flip_pic (the -mpm_flip_fraction blend), apic (affine PIC, Jiang et al. 2015) or xpic (XPIC(m), Hammerquist & Nairn 2017); default flip_pic", TransferNames, 3, &choice, nullptr));
-  sim.transfer = (Transfer)choice;
-  PetscCall(PetscOptionsInt("-mpm_xpic_order", "Order m of XPIC(m), in [1, 8] (m = 1 is PIC); default 2", "", sim.xpic_order, &sim.xpic_order, nullptr));
-  PetscCheck(sim.xpic_order >= 1 && sim.xpic_order <= 8, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_xpic_order = %" PetscInt_FMT " is out of range: it must be in [1, 8]", sim.xpic_order);
-  PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.axisymmetric, &sim.axisymmetric, nullptr));
+  sim.mpm.transfer = (Transfer)choice;
+  PetscCall(PetscOptionsInt("-mpm_xpic_order", "Order m of XPIC(m), in [1, 8] (m = 1 is PIC); default 2", "", sim.mpm.xpic_order, &sim.mpm.xpic_order, nullptr));
+  PetscCheck(sim.mpm.xpic_order >= 1 && sim.mpm.xpic_order <= 8, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_xpic_order = %" PetscInt_FMT " is out of range: it must be in [1, 8]", sim.mpm.xpic_order);
+  PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.mpm.axisymmetric, &sim.mpm.axisymmetric, nullptr));
   PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.run.stop_kinetic_fraction, &sim.run.stop_kinetic_fraction, nullptr));
   PetscCheck(sim.run.stop_kinetic_fraction >= 0 && sim.run.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.run.stop_kinetic_fraction);
   PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.run.energy_growth_limit, &sim.run.energy_growth_limit, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.run.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  choice = (int)sim.f_update;
+  choice = (int)sim.mpm.f_update;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
-  sim.f_update = (FUpdate)choice;
-  choice = (int)sim.shape;
+  sim.mpm.f_update = (FUpdate)choice;
+  choice = (int)sim.mpm.shape;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_shape_type", "Interpolator (shape functions)", ShapeTypeNames, 4, &choice, nullptr));
-  sim.shape = (ShapeType)choice;
-  choice = (int)sim.outside;
+  sim.mpm.shape = (ShapeType)choice;
+  choice = (int)sim.mpm.outside;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_outside_domain", "A particle leaving the domain: stop with an error, or remove it and count it", OutsidePolicyNames, 2, &choice, nullptr));
-  sim.outside = (OutsidePolicy)choice;
+  sim.mpm.outside = (OutsidePolicy)choice;
   {
     PetscInt n = 3;
-    PetscCall(PetscOptionsRealArray("-gravity", "Body acceleration gx,gy[,gz] (m/s^2); missing components are 0", "", sim.gravity, &n, &set));
-    PetscInt dim = sim.grid.dim; // the grid reads -dim later; a gz in 2-D would be dropped without a word
+    PetscCall(PetscOptionsRealArray("-gravity", "Body acceleration gx,gy[,gz] (m/s^2); missing components are 0", "", sim.mpm.gravity, &n, &set));
+    PetscInt dim = sim.mpm.grid.dim; // the grid reads -dim later; a gz in 2-D would be dropped without a word
     PetscCall(PetscOptionsGetInt(nullptr, nullptr, "-dim", &dim, nullptr));
     PetscCheck(!set || n <= dim, sim.comm, PETSC_ERR_USER_INPUT, "Option -gravity has %" PetscInt_FMT " components; it takes at most one per dimension (%" PetscInt_FMT " with -dim %" PetscInt_FMT ")", n, dim, dim);
-    for (PetscInt d = 0; set && d < n; ++d) PetscCheck(std::isfinite(sim.gravity[d]), sim.comm, PETSC_ERR_USER_INPUT, "Option -gravity: component %" PetscInt_FMT " is %g; it must be finite", d, (double)sim.gravity[d]);
+    for (PetscInt d = 0; set && d < n; ++d) PetscCheck(std::isfinite(sim.mpm.gravity[d]), sim.comm, PETSC_ERR_USER_INPUT, "Option -gravity: component %" PetscInt_FMT " is %g; it must be finite", d, (double)sim.mpm.gravity[d]);
   }
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.viscosity, 2, nullptr));
-  PetscCheck(sim.viscosity[0] >= 0 && sim.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");
-  PetscCall(PetscOptionsBool("-mpm_convert_failed", "Failed particles join a velocity field of their own, meeting the intact material only through contact (the paper's conversion)", "", sim.convert_failed, &sim.convert_failed, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-mpm_artificial_viscosity", "Artificial bulk viscosity A1,A2: q = rho (A1 c |tr D| dx + A2 (tr D dx)^2) in compression (Uintah's defaults 0.2,2.0); 0,0 = off", sim.mpm.viscosity, 2, nullptr));
+  PetscCheck(sim.mpm.viscosity[0] >= 0 && sim.mpm.viscosity[1] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_artificial_viscosity: both coefficients must be >= 0");
+  PetscCall(PetscOptionsBool("-mpm_convert_failed", "Failed particles join a velocity field of their own, meeting the intact material only through contact (the paper's conversion)", "", sim.mpm.convert_failed, &sim.mpm.convert_failed, nullptr));
   {
     char buf[256] = "";
     PetscCall(PetscOptionsString("-mpm_contact_material", "Name of a material (of -materials) that moves in a velocity field of its own and meets the others only through contact (-mpm_contact_type), e.g. an explosive that burns away from its container; default none", "", buf, buf, sizeof(buf), &set));
-    if (set) sim.contact_material_name = buf;
-    PetscCheck(!(set && sim.convert_failed), sim.comm, PETSC_ERR_SUP, "Options -mpm_contact_material and -mpm_convert_failed cannot be combined yet (each needs the second velocity field)");
+    if (set) sim.mpm.contact_material_name = buf;
+    PetscCheck(!(set && sim.mpm.convert_failed), sim.comm, PETSC_ERR_SUP, "Options -mpm_contact_material and -mpm_convert_failed cannot be combined yet (each needs the second velocity field)");
   }
-  choice = (int)sim.contact;
+  choice = (int)sim.mpm.contact;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_contact_type", "Contact between velocity fields: no_slip (one velocity where both are present) or friction (Bardenhagen et al. 2001: only approaching fields interact, Coulomb friction)", ContactTypeNames, 2, &choice, nullptr));
-  sim.contact = (ContactType)choice;
-  PetscCall(PetscOptionsReal("-mpm_contact_friction", "Coulomb friction coefficient of the friction contact (-), >= 0", "", sim.friction, &sim.friction, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_contact_friction", sim.friction, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mass_cutoff_fraction, &sim.mass_cutoff_fraction, nullptr));
-  PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
+  sim.mpm.contact = (ContactType)choice;
+  PetscCall(PetscOptionsReal("-mpm_contact_friction", "Coulomb friction coefficient of the friction contact (-), >= 0", "", sim.mpm.friction, &sim.mpm.friction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_contact_friction", sim.mpm.friction, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-mpm_mass_cutoff", "Nodes with less mass than this fraction of a full cell of the densest material are treated as empty", "", sim.mpm.mass_cutoff_fraction, &sim.mpm.mass_cutoff_fraction, nullptr));
+  PetscCall(CheckRange(sim.comm, "-mpm_mass_cutoff", sim.mpm.mass_cutoff_fraction, 0, 1, PETSC_FALSE));
 
   PetscCall(PetscOptionsInt("-output_interval", "Steps between HDF5/XDMF outputs; 0 = first and last step only", "", sim.output.interval, &sim.output.interval, nullptr));
   PetscCheck(sim.output.interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -output_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.output.interval);

@@ -214,7 +214,7 @@ PetscErrorCode OptionsCheckBegin(MPI_Comm comm)
 std::vector<OptionsFeature> RunFeatures(const Simulation &sim, bool point_mode)
 {
   const bool gas = sim.ice != nullptr, coupled = sim.coupling != nullptr;
-  const bool heat = sim.heat != nullptr, ksp = gas && sim.ice->ksp;
+  const bool heat = sim.mpm.heat != nullptr, ksp = gas && sim.ice->ksp;
   return {
     {"point_", "", "", "-mode point", point_mode},
     {"", "", "_thermal_conductivity", "-mpm_heat_conduction", heat},
@@ -226,8 +226,8 @@ std::vector<OptionsFeature> RunFeatures(const Simulation &sim, bool point_mode)
     {"ice_", "", "", "gas (-ice_materials)", gas},
     // read by the set-up in every run, but inert without their feature: said, so a user knows
     {"taylor_", "", "", "-taylor", sim.taylor != nullptr, true},
-    {"analytic", "", "", "solids (-materials)", !sim.materials.empty(), true},
-    {"mpm_", "", "", "solids (-materials)", !sim.materials.empty(), true},
+    {"analytic", "", "", "solids (-materials)", !sim.mpm.materials.empty(), true},
+    {"mpm_", "", "", "solids (-materials)", !sim.mpm.materials.empty(), true},
   };
 }
 

@@ -52,15 +52,15 @@ PetscErrorCode LargestParticle(Simulation &sim, const char name[], PetscInt mate
   const PetscReal  *value, *coor;
   const PetscInt   *mat;
   const PetscInt64 *pid;
-  const PetscInt    dim = sim.grid.dim;
+  const PetscInt    dim = sim.mpm.grid.dim;
   struct {
     PetscReal   value;
     PetscMPIInt rank;
   } local = {-PETSC_MAX_REAL, sim.rank}, global;
   PetscInt best = -1;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(name, &value));
   PetscCall(fields.Get(field::material, &mat));
   PetscCall(fields.Get(DMSwarmPICField_coor, &coor));
@@ -96,8 +96,8 @@ PetscErrorCode AdvanceKinetics(Simulation &sim)
   PetscReal            *T, *lambda;
   const PetscInt       *mat;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::reacted_fraction, &lambda));
   PetscCall(fields.Get(field::material, &mat));
@@ -142,7 +142,7 @@ PetscErrorCode ApplyPhase(Simulation &sim)
   if (ph.semi_implicit_gas) sim.ice->pressure_solver = p == RunPhase::Mechanics && ph.mechanics_explicit ? IcePressureSolver::Explicit : IcePressureSolver::SemiImplicit;
   if (p == RunPhase::Mechanics && ph.mechanics_explicit) sim.ice->sound_speed_knob = 1; // (explicit: the sound speed in full)
   PetscCall(CouplingMeasureSurfaceHeat(sim, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
-  if (sim.heat) PetscCall(HeatSetSurfaceSource(sim, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
+  if (sim.mpm.heat) PetscCall(HeatSetSurfaceSource(sim.mpm, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -159,8 +159,8 @@ PetscErrorCode FinishMeasurement(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCheck(ph.window_length > 0, sim.comm, PETSC_ERR_USER_INPUT, "Phases: the heat-up ended at t = %g s before its measurement window began (-phase_flux_window %g s, -phase_heatup_end_time %g s)", (double)sim.time, (double)ph.flux_window, (double)ph.heatup_end_time);
   if (ph.flame_temperature <= 0) PetscCall(HottestGas(sim, &ph.flame_temperature));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::surface_heat, &Q));
   PetscCall(fields.Get(field::surface_temperature_time, &Tt));
   PetscCall(fields.Get(field::temperature, &T));
@@ -175,7 +175,7 @@ PetscErrorCode FinishMeasurement(Simulation &sim)
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(sums, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
   ph.surface_heat_rate = global[0];
-  PetscCall(PetscPrintf(sim.comm, "  surface heat measured over [%g, %g] s: %g J from the gas, %g W now (flame temperature %g K%s)\n", (double)ph.window_start, (double)(ph.window_start + W), (double)global[1], (double)global[0], (double)Tf, sim.grid.dim == 2 ? "; per metre of depth" : ""));
+  PetscCall(PetscPrintf(sim.comm, "  surface heat measured over [%g, %g] s: %g J from the gas, %g W now (flame temperature %g K%s)\n", (double)ph.window_start, (double)(ph.window_start + W), (double)global[1], (double)global[0], (double)Tf, sim.mpm.grid.dim == 2 ? "; per metre of depth" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -243,9 +243,9 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-phase_ignition_temperature", ph.ignition_temperature, 0, 1e6, PETSC_FALSE));
   if (has_material) {
     std::string names;
-    for (size_t m = 0; m < sim.materials.size(); ++m) {
-      names += (m ? ", " : "") + std::string(sim.materials[m]->Name());
-      if (!std::strcmp(sim.materials[m]->Name(), ignition)) ph.ignition_material = (PetscInt)m;
+    for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
+      names += (m ? ", " : "") + std::string(sim.mpm.materials[m]->Name());
+      if (!std::strcmp(sim.mpm.materials[m]->Name(), ignition)) ph.ignition_material = (PetscInt)m;
     }
     PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material %s is not a solid material; valid choices (-materials): %s", ignition, names.c_str());
   }
@@ -264,16 +264,16 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   PetscFunctionBeginUser;
   if (!ph.Enabled()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCheck(sim.coupling, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: phases other than mechanics need solids and gas (-materials and -ice_materials)");
-  PetscCheck(!Has(ph, RunPhase::HeatOnly) || sim.heat, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases heat_only needs heat conduction in the solids (-mpm_heat_conduction)");
+  PetscCheck(!Has(ph, RunPhase::HeatOnly) || sim.mpm.heat, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases heat_only needs heat conduction in the solids (-mpm_heat_conduction)");
   PetscCheck(!Has(ph, RunPhase::HeatOnly) || Has(ph, RunPhase::HeatUp), sim.comm, PETSC_ERR_USER_INPUT, "Option -phases heat_only needs heatup before it (the surface heat is measured there)");
   std::string model;
   PetscReal   T_model = 0;
   if (ph.ignition_material < 0) {
     std::string burning;
-    for (size_t m = 0; m < sim.materials.size(); ++m) {
+    for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
       PetscCall(CouplingIgnition(sim, (PetscInt)m, &model, &T_model));
       if (model == "none") continue;
-      PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.materials[ph.ignition_material]->Name(), sim.materials[m]->Name());
+      PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.mpm.materials[ph.ignition_material]->Name(), sim.mpm.materials[m]->Name());
       ph.ignition_material = (PetscInt)m;
     }
     PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: no solid burns (-<material>_burn_type); give -phase_ignition_material and -phase_ignition_temperature");
@@ -281,7 +281,7 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
   if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
   ph.cell_ignition_temperature = PETSC_MAX_REAL;
-  for (size_t m = 0; m < sim.materials.size(); ++m) {
+  for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
     std::string burns;
     PetscReal   T_burns = 0;
     PetscCall(CouplingIgnition(sim, (PetscInt)m, &burns, &T_burns));
@@ -289,19 +289,19 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   }
   if (ph.ignition_by_kinetics && !ph.kinetics) {
     ph.kinetics.reset(new ThermalDecomposition());
-    PetscCall(ph.kinetics->SetFromOptions(sim.comm, sim.materials[ph.ignition_material]->Name()));
+    PetscCall(ph.kinetics->SetFromOptions(sim.comm, sim.mpm.materials[ph.ignition_material]->Name()));
     ph.kinetics->par.h = 0; // the particle keeps its reaction heat; conduction carries it on
   }
-  PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.materials[ph.ignition_material]->Name(), model.c_str());
+  PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.mpm.materials[ph.ignition_material]->Name(), model.c_str());
   ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
   ph.semi_implicit_gas          = (PetscBool)(sim.ice->pressure_solver == IcePressureSolver::SemiImplicit);
   if (ph.switch_time[(int)ph.order[0]] < 0) ph.switch_time[(int)ph.order[0]] = sim.time;
   PetscCall(ApplyPhase(sim));
   std::string list;
   for (RunPhase p : ph.order) list += (list.empty() ? "" : " -> ") + std::string(RunPhaseName(p));
-  if (ph.ignition_by_kinetics) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle's thermal decomposition reaching %g of its mass\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.kinetics_fraction));
-  else if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
-  else PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s's criterion in a cell of %s\n", list.c_str(), RunPhaseName(ph.Current()), model.c_str(), sim.materials[ph.ignition_material]->Name()));
+  if (ph.ignition_by_kinetics) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle's thermal decomposition reaching %g of its mass\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.kinetics_fraction));
+  else if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  else PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s's criterion in a cell of %s\n", list.c_str(), RunPhaseName(ph.Current()), model.c_str(), sim.mpm.materials[ph.ignition_material]->Name()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -312,8 +312,8 @@ PetscErrorCode PhasesMeasureHeatBefore(Simulation &sim)
   if (ph.window_start >= 0 || sim.time < (ph.heatup_end_time - ph.flux_window) * (1 - 1e-12)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscInt   n;
   PetscReal *Q, *Tt;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::surface_heat, &Q));
   PetscCall(fields.Get(field::surface_temperature_time, &Tt));
   for (PetscInt p = 0; p < n; ++p) Q[p] = Tt[p] = 0;
@@ -333,8 +333,8 @@ PetscErrorCode PhasesMeasureHeatAfter(Simulation &sim)
   PetscInt         n;
   const PetscReal *T;
   PetscReal       *Tt;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::surface_temperature_time, &Tt));
   for (PetscInt p = 0; p < n; ++p) Tt[p] += T[p] * sim.dt;
@@ -368,14 +368,14 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
     PetscCall(LargestParticle(sim, field::reacted_fraction, ph.ignition_material, &most, &id, x));
     PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id_hot, x_hot));
     if (most >= ph.kinetics_fraction) {
-      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
     }
   } else if (ph.ignition_by_temperature) {
     PetscReal  x[3] = {0, 0, 0};
     PetscInt64 id    = -1;
     PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id, x));
     if (ph.hottest_ignition >= ph.ignition_temperature)
-      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
   } else {
     // the burn model's own test on the cells: heat_only moves only the particles' temperatures, so
     // they are projected first (the heat-up's step projected them at its start)
@@ -392,11 +392,11 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
         std::vector<PetscReal> temperatures; // per material: the hottest particle, the mean
         PetscCall(PhasesTemperatures(sim, temperatures));
         PetscReal hottest = 0;
-        for (size_t m = 0; m < sim.materials.size(); ++m) hottest = PetscMax(hottest, temperatures[2 * m]);
+        for (size_t m = 0; m < sim.mpm.materials.size(); ++m) hottest = PetscMax(hottest, temperatures[2 * m]);
         check = !(hottest < ph.cell_ignition_temperature);
       }
       if (check) {
-        PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+        PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
         PetscCall(CouplingProjectSolids(sim));
         ph.heat_only_checked = true;
       }
@@ -435,15 +435,15 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
 
 PetscErrorCode PhasesTemperatures(Simulation &sim, std::vector<PetscReal> &out)
 {
-  const size_t     nm = sim.materials.size();
+  const size_t     nm = sim.mpm.materials.size();
   PetscInt         n;
   const PetscReal *T, *mass;
   const PetscInt  *mat;
   std::vector<PetscReal> hottest(nm, 0), sums(2 * nm, 0), global_sums(2 * nm, 0);
   PetscFunctionBeginUser;
   out.assign(2 * nm, 0);
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::mass, &mass));
   PetscCall(fields.Get(field::material, &mat));
@@ -468,7 +468,7 @@ std::string PhasesSummary(const Simulation &sim)
   if (!ph.Enabled()) return "";
   char buf[1024];
   std::snprintf(buf, sizeof(buf), "  \"phases\": {\"current\": \"%s\", \"heatup_start\": %.12g, \"heat_only_start\": %.12g, \"mechanics_start\": %.12g, \"flux_window\": [%.12g, %.12g], \"flame_temperature\": %.12g, \"surface_heat_rate\": %.12g, \"ignition_material\": \"%s\", \"ignition_temperature\": %.12g, \"hottest_ignition_material\": %.12g},\n",
-                RunPhaseName(ph.Current()), (double)ph.switch_time[0], (double)ph.switch_time[1], (double)ph.switch_time[2], (double)ph.window_start, (double)(ph.window_start + ph.window_length), (double)ph.flame_temperature, (double)ph.surface_heat_rate, ph.ignition_material >= 0 ? sim.materials[ph.ignition_material]->Name() : "", (double)ph.ignition_temperature, (double)ph.hottest_ignition);
+                RunPhaseName(ph.Current()), (double)ph.switch_time[0], (double)ph.switch_time[1], (double)ph.switch_time[2], (double)ph.window_start, (double)(ph.window_start + ph.window_length), (double)ph.flame_temperature, (double)ph.surface_heat_rate, ph.ignition_material >= 0 ? sim.mpm.materials[ph.ignition_material]->Name() : "", (double)ph.ignition_temperature, (double)ph.hottest_ignition);
   return buf;
 }
 

@@ -116,17 +116,17 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   DM           sw;
   PetscFunctionBeginUser;
   PetscCall(ReadPointOptions(sim.comm, o));
-  sim.grid.dim = 3;
-  PetscCall(CreateMaterials(sim));
+  sim.mpm.grid.dim = 3;
+  PetscCall(CreateMaterials(sim.mpm));
   if (sim.help) PetscFunctionReturn(PETSC_SUCCESS);
   PetscInt id = 0;
   if (!o.material.empty()) {
     id = -1;
-    for (size_t m = 0; m < sim.materials.size(); ++m)
-      if (sim.materials[m]->name_ == o.material) id = (PetscInt)m;
+    for (size_t m = 0; m < sim.mpm.materials.size(); ++m)
+      if (sim.mpm.materials[m]->name_ == o.material) id = (PetscInt)m;
     PetscCheck(id >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -point_material %s is not one of -materials", o.material.c_str());
   }
-  Material &material = *sim.materials[id];
+  Material &material = *sim.mpm.materials[id];
 
   // A two-point swarm with the fields the material layer reads.
   PetscCall(DMCreate(PETSC_COMM_SELF, &sw));
@@ -139,7 +139,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   for (const char *name : real1) PetscCall(DMSwarmRegisterPetscDatatypeField(sw, name, 1, PETSC_REAL));
   PetscCall(DMSwarmRegisterPetscDatatypeField(sw, field::material, 1, PETSC_INT));
   PetscInt bytes = 0;
-  PetscCall(RegisterMaterialState(sw, sim.materials, &bytes));
+  PetscCall(RegisterMaterialState(sw, sim.mpm.materials, &bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
   PetscCall(DMSwarmSetLocalSizes(sw, 2, 0));
   {
@@ -228,7 +228,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
           const Mat3 F0 = RotatingF(o, (step - 1) * dt, total_time), F1 = RotatingF(o, step * dt, total_time);
           L               = (F1 - F0) * (0.5 * (F0 + F1)).inverse() / dt;
           Mat3Map(F + 9)  = F1;
-        } else Mat3Map(F + 9) = (sim.f_update == FUpdate::Exponential ? Expm(L * dt) : Mat3(Mat3::Identity() + L * dt)) * Mat3Map(F + 9);
+        } else Mat3Map(F + 9) = (sim.mpm.f_update == FUpdate::Exponential ? Expm(L * dt) : Mat3(Mat3::Identity() + L * dt)) * Mat3Map(F + 9);
         Mat3Map(Lp + 9) = L;
         V[1]             = V0[1] * Mat3Map(F + 9).determinant();
         mat[0]           = -1; // only the trial point takes the step

@@ -15,10 +15,10 @@ PetscErrorCode CheckRunStops(Simulation &sim, PetscBool *stop)
              "Step %" PetscInt_FMT ", t = %g s: unstable: the total energy grew by %.3g of the largest energy seen (kinetic %g J, internal %g J), beyond -mpm_energy_growth_limit %g; likely cause: a time step above the stability limit of this interpolator, transfer and step order (reduce -mpm_cfl)",
              sim.step, (double)sim.time, (double)r.balance_error, (double)r.kinetic, (double)r.internal, (double)sim.run.energy_growth_limit);
   if (sim.run.stop_kinetic_fraction <= 0) PetscFunctionReturn(PETSC_SUCCESS);
-  if (r.kinetic < sim.run.stop_kinetic_fraction * sim.diag.initial_kinetic) {
+  if (r.kinetic < sim.run.stop_kinetic_fraction * sim.mpm.diag.initial_kinetic) {
     *stop                  = PETSC_TRUE;
-    sim.diag.kinetic_stop = PETSC_TRUE;
-    PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: kinetic energy %g J is below -stop_kinetic_fraction %g of its initial %g J\n", sim.step, (double)sim.time, (double)r.kinetic, (double)sim.run.stop_kinetic_fraction, (double)sim.diag.initial_kinetic));
+    sim.mpm.diag.kinetic_stop = PETSC_TRUE;
+    PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: kinetic energy %g J is below -stop_kinetic_fraction %g of its initial %g J\n", sim.step, (double)sim.time, (double)r.kinetic, (double)sim.run.stop_kinetic_fraction, (double)sim.mpm.diag.initial_kinetic));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

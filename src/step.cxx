@@ -47,35 +47,35 @@ namespace burst {
 static PetscErrorCode MPMStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
-  PetscCall(ComputeExternalForces(sim));
-  switch (sim.scheme) {
+  PetscCall(ComputeExternalForces(sim.mpm));
+  switch (sim.mpm.scheme) {
   case StepScheme::USL:
-    PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim));
-    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim));
+    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridUpdate(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(UpdateStress(sim.mpm));
     break;
   case StepScheme::MUSL:
-    PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim));
-    PetscCall(RemapMomentum(sim)); // G2P(v) and P2G(mv) in one particle pass
-    PetscCall(GridVelocityFromMomentum(sim));
-    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim));
+    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridUpdate(sim.mpm));
+    PetscCall(RemapMomentum(sim.mpm)); // G2P(v) and P2G(mv) in one particle pass
+    PetscCall(GridVelocityFromMomentum(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(UpdateStress(sim.mpm));
     break;
   case StepScheme::USF:
-    PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-    PetscCall(GridVelocityFromMomentum(sim));
-    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim));
-    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim));
-    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(GridVelocityFromMomentum(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+    PetscCall(UpdateStress(sim.mpm));
+    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+    PetscCall(GridUpdate(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
     break;
   }
-  PetscCall(MigrateParticles(sim));
-  PetscCall(ConductHeat(sim)); // after migration: the stencil needs every particle on its owner rank
-  PetscCall(NonlocalAverage(sim)); // likewise; no-op unless a material regularises nonlocally
+  PetscCall(MigrateParticles(sim.mpm));
+  PetscCall(ConductHeat(sim.mpm)); // after migration: the stencil needs every particle on its owner rank
+  PetscCall(NonlocalAverage(sim.mpm)); // likewise; no-op unless a material regularises nonlocally
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -104,8 +104,8 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
-  PetscCall(ComputeExternalForces(sim));
-  PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(ComputeExternalForces(sim.mpm));
+  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
   PetscCall(CouplingProjectSolids(sim));
   PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
@@ -114,8 +114,8 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
   PetscCall(CouplingPressureToParticles(sim));
-  PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-  PetscCall(GridUpdate(sim));
+  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+  PetscCall(GridUpdate(sim.mpm));
   PetscCall(CouplingSolidVelocity(sim));
   PetscCall(IceSources(ice));
   PetscCall(IceBudgetFaces(ice));
@@ -124,17 +124,17 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(CouplingIncrementsToNodes(sim));
   PetscCall(CouplingChargePressureWork(sim));
-  if (sim.scheme == StepScheme::MUSL) {
-    PetscCall(RemapMomentum(sim));
-    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
-    PetscCall(GridVelocityFromMomentum(sim));
-    PetscCall(GridToParticles(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
-  } else PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+  if (sim.mpm.scheme == StepScheme::MUSL) {
+    PetscCall(RemapMomentum(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
+    PetscCall(GridVelocityFromMomentum(sim.mpm));
+    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+  } else PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
   PetscCall(CouplingHeatToParticles(sim));
-  PetscCall(UpdateStress(sim));
-  PetscCall(MigrateParticles(sim));
-  PetscCall(ConductHeat(sim));
-  PetscCall(NonlocalAverage(sim));
+  PetscCall(UpdateStress(sim.mpm));
+  PetscCall(MigrateParticles(sim.mpm));
+  PetscCall(ConductHeat(sim.mpm));
+  PetscCall(NonlocalAverage(sim.mpm));
   PetscCall(IceAdvect(ice));
   PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
@@ -148,8 +148,8 @@ static PetscErrorCode HeatUpStep(Simulation &sim)
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
-  PetscCall(ParticlesToGrid(sim, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-  PetscCall(GridVelocityFromMomentum(sim)); // the particles are at rest: every nodal velocity is zero
+  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(GridVelocityFromMomentum(sim.mpm)); // the particles are at rest: every nodal velocity is zero
   PetscCall(CouplingProjectSolids(sim));
   PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
@@ -165,7 +165,7 @@ static PetscErrorCode HeatUpStep(Simulation &sim)
   PetscCall(PhasesMeasureHeatBefore(sim));
   PetscCall(CouplingHeatToParticles(sim));
   PetscCall(PhasesMeasureHeatAfter(sim));
-  PetscCall(ConductHeat(sim));
+  PetscCall(ConductHeat(sim.mpm));
   PetscCall(IceAdvect(ice));
   PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
@@ -178,7 +178,7 @@ static PetscErrorCode HeatOnlyStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.phases.ev_heat_only, 0, 0, 0, 0));
-  PetscCall(ConductHeat(sim));
+  PetscCall(ConductHeat(sim.mpm));
   sim.ice->time += sim.dt;
   PetscCall(PetscLogEventEnd(sim.phases.ev_heat_only, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -191,12 +191,15 @@ static PetscErrorCode StableTimeStep(Simulation &sim)
   const RunPhase phase = sim.phases.Current();
   PetscFunctionBeginUser;
   sim.dt = PETSC_MAX_REAL;
-  if (sim.HasParticles() && phase == RunPhase::Mechanics) PetscCall(ComputeTimeStep(sim));
+  if (sim.HasParticles() && phase == RunPhase::Mechanics) {
+    PetscCall(ComputeTimeStep(sim.mpm, sim.run.final_time));
+    sim.dt = sim.mpm.dt;
+  }
   if (sim.ice) {
     PetscReal dt_gas;
     PetscCall(IceComputeTimeStep(*sim.ice, &dt_gas));
-    sim.dt = PetscMin(sim.dt, PetscMin(dt_gas, sim.dt_max));
-    if (sim.dt_fixed > 0) sim.dt = sim.dt_fixed;
+    sim.dt = PetscMin(sim.dt, PetscMin(dt_gas, sim.mpm.dt_max));
+    if (sim.mpm.dt_fixed > 0) sim.dt = sim.mpm.dt_fixed;
     if (phase == RunPhase::HeatUp) {
       const Phases   &ph   = sim.phases;
       const PetscReal left = ph.heatup_end_time - sim.time;
@@ -210,10 +213,19 @@ static PetscErrorCode StableTimeStep(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+void SetMpmClock(Simulation &sim)
+{
+  sim.mpm.step = sim.step;
+  sim.mpm.time = sim.time;
+  sim.mpm.dt   = sim.dt;
+}
+
 PetscErrorCode TakeStep(Simulation &sim)
 {
   PetscFunctionBeginUser;
+  SetMpmClock(sim);
   PetscCall(StableTimeStep(sim));
+  SetMpmClock(sim);
   if (sim.phases.Current() == RunPhase::HeatUp) PetscCall(HeatUpStep(sim));
   else if (sim.phases.Current() == RunPhase::HeatOnly) PetscCall(HeatOnlyStep(sim));
   else if (sim.coupling) PetscCall(CoupledStep(sim));
@@ -223,7 +235,8 @@ PetscErrorCode TakeStep(Simulation &sim)
   }
   sim.time += sim.dt;
   sim.step += 1;
-  sim.particle_steps += sim.total_particles;
+  sim.mpm.particle_steps += sim.mpm.total_particles;
+  SetMpmClock(sim);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

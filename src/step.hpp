@@ -10,5 +10,7 @@ struct Simulation;
 // at -final_time), then the phases of the scene's step in order: solids only, gas only, or the
 // coupled step; then time, step count and particle-steps advance.
 PetscErrorCode TakeStep(Simulation &sim);
+// The MPM solver's step, time and dt from the run's (the gas's clock advances with its own steps).
+void SetMpmClock(Simulation &sim);
 
 } // namespace burst

@@ -52,10 +52,10 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   c.seed_mass.assign(c.nsolid, 0);
   PetscCall(BurnoutOptions(sim.comm, &c.burnout, &c.burnout_volume_ratio));
   bool any = false;
-  for (size_t m = 0; m < sim.materials.size(); ++m) {
+  for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
     const PetscInt s = c.solid_of[m];
     if (s < 0) continue;
-    const Material &mat = *sim.materials[m];
+    const Material &mat = *sim.mpm.materials[m];
     BurnModel      *model;
     PetscCall(BurnModelCreate(sim.comm, mat.Name(), &model));
     c.burn[s].reset(model);
@@ -80,8 +80,8 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
     const PetscReal *mass;
     const PetscInt  *material;
     std::vector<PetscReal> local(c.nsolid, 0);
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+    SwarmAccess fields(sim.mpm.swarm);
     PetscCall(fields.Get(field::mass, &mass));
     PetscCall(fields.Get(field::material, &material));
     for (PetscInt p = 0; p < n; ++p) local[c.solid_of[material[p]]] = PetscMax(local[c.solid_of[material[p]]], mass[p]);
@@ -92,7 +92,7 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
     ice.momentum_source.assign(nlocal * ice.nmat * 3, 0);
     ice.energy_source.assign(nlocal * ice.nmat, 0);
     c.burnt_fraction.assign(nlocal * c.nsolid, 0);
-    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nsolid, &c.da_phi));
+    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.nsolid, &c.da_phi));
     PetscCall(DMDACreateCompatibleDMDA(ice.da, 5 * ice.nmat + c.nsolid, &c.da_source));
     PetscCall(DMCreateGlobalVector(c.da_source, &c.source_global));
     PetscCall(DMCreateLocalVector(c.da_source, &c.source_local));
@@ -128,7 +128,7 @@ PetscErrorCode CouplingBurnHelp(Simulation &sim)
   char      product[256] = "";
   PetscFunctionBeginUser;
   PetscCall(BurnoutOptions(sim.comm, &burnout, &volume_ratio));
-  for (const auto &mat : sim.materials) {
+  for (const auto &mat : sim.mpm.materials) {
     BurnModel        *model;
     const std::string pre = std::string(mat->Name()) + "_";
     PetscCall(BurnModelCreate(sim.comm, mat->Name(), &model));
@@ -154,7 +154,7 @@ static void CellBurnInput(Simulation &sim, const PetscScalar *a, const PetscScal
 {
   Coupling            &c   = *sim.coupling;
   IceSolver           &ice = *sim.ice;
-  const LocalNodeIndex index(sim.grid);
+  const LocalNodeIndex index(sim.mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
   const PetscReal      V    = ice.CellVolume();
   const PetscScalar   *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
@@ -349,7 +349,7 @@ struct BurnParticles {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = sim.mpm.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F;
@@ -357,9 +357,9 @@ struct BurnParticles {
     const PetscReal     *v, *T;
     const PetscInt      *material;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
     remove.assign(n, 0);
-    SwarmAccess fields(sim.swarm);
+    SwarmAccess fields(sim.mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -385,13 +385,13 @@ struct BurnParticles {
       for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
       // what leaves the particles goes to the gas: it leaves the solids' energy balance
       const PetscReal burnt = (1 - keep) * mass[p];
-      sim.diag.removed_mass += burnt;
-      sim.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
+      sim.mpm.diag.removed_mass += burnt;
+      sim.mpm.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
       c.counters[kBurntParticleMass] += burnt;
       c.counters[kBurntParticleEnergy] += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
       c.counters[kBurntParticleThermal] += burnt * cv * T[p];
       for (int a = 0; a < DIM; ++a) {
-        sim.diag.removed_momentum[a] += burnt * v[DIM * p + a];
+        sim.mpm.diag.removed_momentum[a] += burnt * v[DIM * p + a];
         c.counters[kBurntParticleMomentum + a] += burnt * v[DIM * p + a];
       }
       mass[p] *= keep;
@@ -457,12 +457,12 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   const PetscScalar *phil;
   PetscCall(VecGetArrayRead(local, &phil));
   BurnParticles kernel{sim, c, ice, phil, remove};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
   PetscCall(VecRestoreArrayRead(local, &phil));
   PetscInt64 removed = 0;
-  PetscCall(RemoveParticles(sim, remove, &removed));
+  PetscCall(RemoveParticles(sim.mpm, remove, &removed));
   c.burnt_particles += removed;
-  if (removed) PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", sim.step, removed));
+  if (removed) PetscCall(PetscInfo(sim.mpm.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", sim.step, removed));
   PetscCall(PetscLogEventEnd(c.ev_burn_particles, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

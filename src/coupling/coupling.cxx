@@ -57,9 +57,9 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
   PetscCall(CheckRange(sim.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
   PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
-  c->solid_of.assign(sim.materials.size(), -1);
-  for (size_t m = 0; m < sim.materials.size(); ++m) {
-    const Material &mat = *sim.materials[m];
+  c->solid_of.assign(sim.mpm.materials.size(), -1);
+  for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
+    const Material &mat = *sim.mpm.materials[m];
     PetscReal       v[3];
     PetscCheck(!mat.IsRigid(v), sim.comm, PETSC_ERR_SUP, "Material %s: a rigid body in a scene with gas is not supported yet", mat.Name());
     PetscCheck(mat.BulkModulus() > 0, sim.comm, PETSC_ERR_SUP, "Material %s (model %s) reports no bulk modulus, which the gas coupling needs", mat.Name(), mat.Model());
@@ -80,7 +80,7 @@ PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec>
     solids.push_back({mat.Name(), eos.release(), 300});
   }
   sim.coupling.reset(c.release());
-  sim.ambient_pressure = PETSC_TRUE;
+  sim.mpm.ambient_pressure = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -93,15 +93,15 @@ struct ProjectKernel {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = sim.mpm.grid;
     const LocalNodeIndex index(g);
     const PetscInt       stride = 2 + DIM, dof = c.mass_stride;
     PetscInt             n;
     const PetscReal     *x, *v, *m, *T, *hw, *F;
     const PetscInt      *mat;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+    SwarmAccess fields(sim.mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::mass, &m));
@@ -135,7 +135,7 @@ struct ParticleKernel {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = sim.mpm.grid;
     const LocalNodeIndex index(g);
     const PetscInt       dof = c.IncDof(DIM);
     PetscInt             n;
@@ -143,8 +143,8 @@ struct ParticleKernel {
     const PetscInt      *mat = nullptr;
     PetscReal           *out, heat = 0, *received = nullptr;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+    SwarmAccess fields(sim.mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -155,7 +155,7 @@ struct ParticleKernel {
       if (c.measure_surface_heat) PetscCall(fields.Get(field::surface_heat, &received));
     }
     bool             fill; // the pressure: this step's stencils from P2G(m, mv); the heat: after G2P moved them
-    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = sim.mpm.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       Stencil<DIM, S> &st = stencils[p];
       if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -194,13 +194,13 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   PetscCall(VecZeroEntries(c.mass_local));
   PetscCall(VecGetArray(c.mass_local, &nodes));
   ProjectKernel kernel{sim, c, nodes};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
   PetscCall(VecRestoreArray(c.mass_local, &nodes));
   PetscCall(VecZeroEntries(c.mass_global));
   PetscCall(DMLocalToGlobal(c.da_mass, c.mass_local, ADD_VALUES, c.mass_global));
   PetscCall(DMGlobalToLocal(c.da_mass, c.mass_global, INSERT_VALUES, c.mass_local));
   // nodes -> cells
-  const LocalNodeIndex index(sim.grid);
+  const LocalNodeIndex index(sim.mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, S = ice.stride;
   const PetscReal      V   = ice.CellVolume();
   PetscCall(VecGetArray(c.mass_local, &nodes));
@@ -262,7 +262,7 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
   PetscCall(VecGetArrayRead(c.inc_local, &a));
   ParticleKernel kernel{sim, c, a, true};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
   PetscCall(VecRestoreArrayRead(c.inc_local, &a));
   PetscCall(CouplingAmbientImpulse(sim)); // its work is the gases' to pay (pressure_work.cxx)
   PetscCall(PetscLogEventEnd(c.ev_pressure, 0, 0, 0, 0));
@@ -275,12 +275,12 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
   IceSolver         &ice = *sim.ice;
   const PetscScalar *nodes, *vel;
   PetscScalar       *a;
-  const LocalNodeIndex index(sim.grid);
-  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.grid.num_velocity_fields * 2 * dim;
+  const LocalNodeIndex index(sim.mpm.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.mpm.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(c.ev_solid_velocity, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
-  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(VecGetArrayRead(sim.mpm.grid.velocity_local, &vel));
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscReal V = ice.CellVolume();
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -298,7 +298,7 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
         }
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
-  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
+  PetscCall(VecRestoreArrayRead(sim.mpm.grid.velocity_local, &vel));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice)); // the increments of ghost cells are taken against these
   PetscCall(PetscLogEventEnd(c.ev_solid_velocity, 0, 0, 0, 0));
@@ -309,7 +309,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
 {
   Coupling          &c   = *sim.coupling;
   IceSolver         &ice = *sim.ice;
-  Grid              &g   = sim.grid;
+  Grid              &g   = sim.mpm.grid;
   const PetscScalar *a;
   PetscScalar       *inc, *vel;
   PetscInt           xs[3], xm[3];
@@ -348,7 +348,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   // 2-D, more on the domain faces: the weights of a node sum to 1). Then what the nodes (and
   // through them the particles, sum_p m_p sum_i N_ip dX_i = sum_i m_i dX_i) receive is what the
   // cells gave. A field that carries several solids takes their nodal-mass-weighted mean.
-  const LocalNodeIndex index(sim.grid);
+  const LocalNodeIndex index(sim.mpm.grid);
   const PetscInt       mstride = 2 + dim;
   const PetscScalar   *solid_mass;
   PetscCall(VecGetArrayRead(c.mass_local, &solid_mass));
@@ -391,7 +391,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
             // what the face held back is the face's impulse on the particles (their momentum changes by m_I dv_I)
             const PetscReal m_node = nodal[l * node_dof + f * g.NodeStride()];
             c.counters[kMomentumToNodes + d] += m_node * given;
-            if (value != given) sim.diag.bc_impulse[d] += m_node * (value - given);
+            if (value != given) sim.mpm.diag.bc_impulse[d] += m_node * (value - given);
             ni[d] = value;
             c.counters[kKineticToNodes] += m_node * (vel[l * vdof + f * 2 * dim + dim + d] + 0.5 * value) * value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
@@ -418,7 +418,7 @@ PetscErrorCode CouplingHeatToParticles(Simulation &sim)
   PetscCall(PetscLogEventBegin(sim.coupling->ev_heat, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(sim.coupling->inc_local, &inc));
   ParticleKernel kernel{sim, *sim.coupling, inc, false};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
   PetscCall(VecRestoreArrayRead(sim.coupling->inc_local, &inc));
   PetscCall(PetscLogEventEnd(sim.coupling->ev_heat, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -447,18 +447,18 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(PetscLogEventRegister("Cpl_HeatToParticles", id, &c.ev_heat));
   PetscCall(PetscLogEventRegister("Cpl_PressureWork", id, &c.ev_work));
   PetscCall(PetscLogEventRegister("Cpl_SurfaceHeat", id, &c.ev_surface));
-  PetscCheck(!sim.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
-  PetscCheck(sim.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
+  PetscCheck(!sim.mpm.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
+  PetscCheck(sim.mpm.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
-  c.mass_stride = c.nsolid * (2 + sim.grid.dim);
-  c.nfield      = sim.TwoDeformableFields() ? 2 : 1;
+  c.mass_stride = c.nsolid * (2 + sim.mpm.grid.dim);
+  c.nfield      = sim.mpm.TwoDeformableFields() ? 2 : 1;
   c.field_of.assign(c.nsolid, 0);
-  for (size_t m = 0; m < sim.materials.size(); ++m)
-    if (c.solid_of[m] >= 0) c.field_of[c.solid_of[m]] = sim.VelocityField((PetscInt)m, 0);
-  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.mass_stride, &c.da_mass));
+  for (size_t m = 0; m < sim.mpm.materials.size(); ++m)
+    if (c.solid_of[m] >= 0) c.field_of[c.solid_of[m]] = sim.mpm.VelocityField((PetscInt)m, 0);
+  PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.mass_stride, &c.da_mass));
   PetscCall(DMCreateGlobalVector(c.da_mass, &c.mass_global));
   PetscCall(DMCreateLocalVector(c.da_mass, &c.mass_local));
-  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.IncDof(sim.grid.dim), &c.da_inc));
+  PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.IncDof(sim.mpm.grid.dim), &c.da_inc));
   PetscCall(DMCreateGlobalVector(c.da_inc, &c.inc_global));
   PetscCall(DMCreateLocalVector(c.da_inc, &c.inc_local));
   // the first projection, then the gases give up the volume the solids take at the cell pressure
@@ -485,10 +485,10 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
     PetscCall(DMDACreateCompatibleDMDA(ice.da, c.nsolid * 3, &c.da_dv));
     PetscCall(DMCreateLocalVector(c.da_dv, &c.dv_local));
     PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, c.nsolid * 3, (PetscInt)ice.solid_pressure_dv.size(), ice.solid_pressure_dv.data(), &c.dv_owned));
-    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, c.nfield * sim.grid.dim, &c.da_impulse));
+    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.nfield * sim.mpm.grid.dim, &c.da_impulse));
     PetscCall(DMCreateGlobalVector(c.da_impulse, &c.impulse_global));
     PetscCall(DMCreateLocalVector(c.da_impulse, &c.impulse_local));
-    PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 1, &c.da_work));
+    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, 1, &c.da_work));
     PetscCall(DMCreateGlobalVector(c.da_work, &c.work_global));
     PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));
   }

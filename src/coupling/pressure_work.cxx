@@ -31,14 +31,14 @@ struct AmbientImpulseKernel {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = sim.mpm.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F, *vol, *ambient;
     const PetscInt      *mat;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+    SwarmAccess fields(sim.mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -47,7 +47,7 @@ struct AmbientImpulseKernel {
     PetscCall(fields.Get(field::material, &mat));
     const PetscReal  dt = sim.dt;
     bool             fill; // this step's stencils, from P2G(m, mv) at the same positions
-    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = sim.mpm.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       Stencil<DIM, S> &st = stencils[p];
       if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -76,7 +76,7 @@ PetscErrorCode CouplingAmbientImpulse(Simulation &sim)
   PetscCall(VecZeroEntries(c.impulse_local));
   PetscCall(VecGetArray(c.impulse_local, &nodes));
   AmbientImpulseKernel kernel{sim, c, nodes};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
+  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
   PetscCall(VecRestoreArray(c.impulse_local, &nodes));
   PetscCall(VecZeroEntries(c.impulse_global));
   PetscCall(DMLocalToGlobal(c.da_impulse, c.impulse_local, ADD_VALUES, c.impulse_global)); // owned nodes: complete
@@ -88,7 +88,7 @@ PetscErrorCode CouplingChargePressureWork(Simulation &sim)
 {
   Coupling  &c   = *sim.coupling;
   IceSolver &ice = *sim.ice;
-  Grid      &g   = sim.grid;
+  Grid      &g   = sim.mpm.grid;
   PetscFunctionBeginUser;
   if (!c.charge_pressure_work) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_work, 0, 0, 0, 0));

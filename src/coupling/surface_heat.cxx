@@ -33,7 +33,7 @@ PetscErrorCode CouplingSurfaceHeatSetUp(Simulation &sim)
   Coupling &c = *sim.coupling;
   PetscFunctionBeginUser;
   if (c.surface_h > 0) {
-    PetscCheck(!sim.axisymmetric, sim.comm, PETSC_ERR_SUP, "Option -coupling_surface_heat_transfer is not supported with -axisymmetric yet");
+    PetscCheck(!sim.mpm.axisymmetric, sim.comm, PETSC_ERR_SUP, "Option -coupling_surface_heat_transfer is not supported with -axisymmetric yet");
     PetscCall(DMDACreateCompatibleDMDA(sim.ice->da, 1, &c.da_surface));
     PetscCall(DMCreateGlobalVector(c.da_surface, &c.surface_global));
     PetscCall(DMCreateLocalVector(c.da_surface, &c.surface_local));

@@ -443,7 +443,7 @@ std::string Join(const std::vector<std::string> &names)
 std::string SolidNames(const Simulation &sim)
 {
   std::vector<std::string> names;
-  for (const auto &m : sim.materials) names.push_back(m->Name());
+  for (const auto &m : sim.mpm.materials) names.push_back(m->Name());
   return Join(names);
 }
 
@@ -460,7 +460,7 @@ std::vector<std::string> CheckpointFields(const Simulation &sim)
 {
   std::vector<std::string>  out;
   std::vector<std::string> *names = nullptr;
-  if (SwarmFieldNames(sim.swarm, &names) == PETSC_SUCCESS)
+  if (SwarmFieldNames(sim.mpm.swarm, &names) == PETSC_SUCCESS)
     for (const std::string &n : *names)
       if (std::find(out.begin(), out.end(), n) == out.end()) out.push_back(n);
   out.push_back(DMSwarmField_pid);
@@ -531,7 +531,7 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer viewer)
 {
   PetscInt n;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
   for (const std::string &name : CheckpointFields(sim)) {
     PetscInt      bs;
@@ -539,7 +539,7 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer viewer)
     void         *data;
     Vec           v;
     PetscScalar  *a;
-    PetscCall(DMSwarmGetField(sim.swarm, name.c_str(), &bs, &type, &data));
+    PetscCall(DMSwarmGetField(sim.mpm.swarm, name.c_str(), &bs, &type, &data));
     PetscCall(VecCreateMPI(sim.comm, n * bs, PETSC_DETERMINE, &v));
     PetscCall(VecSetBlockSize(v, bs));
     PetscCall(PetscObjectSetName((PetscObject)v, name.c_str()));
@@ -553,7 +553,7 @@ PetscErrorCode WriteParticles(Simulation &sim, PetscViewer viewer)
       }
     }
     PetscCall(VecRestoreArray(v, &a));
-    PetscCall(DMSwarmRestoreField(sim.swarm, name.c_str(), &bs, &type, &data));
+    PetscCall(DMSwarmRestoreField(sim.mpm.swarm, name.c_str(), &bs, &type, &data));
     PetscCall(CheckpointChecksumVec(v, "particles/" + name));
     PetscCall(VecView(v, viewer));
     PetscCall(VecDestroy(&v));
@@ -577,17 +577,17 @@ std::vector<Part> Parts(Simulation &sim, PetscInt64 *local_particles)
   run.Global("time", &sim.time);
   run.Global("dt", &sim.dt);
   run.Global("step", &sim.step);
-  run.Global("next_pid", &sim.next_pid);
-  run.Global("particle_steps", &sim.particle_steps);
-  run.Global("total_particles", &sim.total_particles);
+  run.Global("next_pid", &sim.mpm.next_pid);
+  run.Global("particle_steps", &sim.mpm.particle_steps);
+  run.Global("total_particles", &sim.mpm.total_particles);
   run.Global("wall_stepping", &sim.wall_stepping);
   run.PerRank("local_particles", local_particles);
   parts[1].name = "diagnostics";
-  sim.diag.Checkpoint(parts[1].values);
+  sim.mpm.diag.Checkpoint(parts[1].values);
   parts[2].name = "output";
   sim.output.Checkpoint(parts[2].values);
   parts[3].name = "fragments";
-  sim.fragments.Checkpoint(parts[3].values);
+  sim.mpm.fragments.Checkpoint(parts[3].values);
   if (sim.ice) {
     parts.push_back({"gas", {}});
     IceCheckpointValues(*sim.ice, parts.back().values);
@@ -759,7 +759,7 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::str
   // otherwise an even split, then migration to the owners.
   if (saved_ranks == sim.size) local = (PetscInt)local_counts[sim.rank];
   else local = (PetscInt)(total / sim.size + (sim.rank < total % sim.size ? 1 : 0));
-  PetscCall(DMSwarmSetLocalSizes(sim.swarm, local, 16));
+  PetscCall(DMSwarmSetLocalSizes(sim.mpm.swarm, local, 16));
   PetscCall(PetscViewerHDF5PushGroup(viewer, "/particles"));
   for (const std::string &name : CheckpointFields(sim)) {
     PetscInt           bs;
@@ -770,7 +770,7 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::str
     PetscBool          has;
     PetscCall(PetscViewerHDF5HasDataset(viewer, ("/particles/" + name).c_str(), &has));
     PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s has no particle field %s: it was written by a run with other materials or models (this run: -materials %s)", file.c_str(), name.c_str(), SolidNames(sim).c_str());
-    PetscCall(DMSwarmGetField(sim.swarm, name.c_str(), &bs, &type, &data));
+    PetscCall(DMSwarmGetField(sim.mpm.swarm, name.c_str(), &bs, &type, &data));
     PetscCall(VecCreate(sim.comm, &v));
     PetscCall(VecSetBlockSize(v, bs));
     PetscCall(VecSetSizes(v, local * bs, PETSC_DETERMINE));
@@ -787,12 +787,12 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::str
       }
     }
     PetscCall(VecRestoreArrayRead(v, &a));
-    PetscCall(DMSwarmRestoreField(sim.swarm, name.c_str(), &bs, &type, &data));
+    PetscCall(DMSwarmRestoreField(sim.mpm.swarm, name.c_str(), &bs, &type, &data));
     PetscCall(VecDestroy(&v));
   }
   PetscCall(PetscViewerHDF5PopGroup(viewer));
-  sim.total_particles = total;
-  PetscCall(MigrateParticles(sim)); // owner ranks and cell ids; no particle moves on the same ranks
+  sim.mpm.total_particles = total;
+  PetscCall(MigrateParticles(sim.mpm)); // owner ranks and cell ids; no particle moves on the same ranks
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -923,7 +923,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   PetscInt64 local_particles = 0;
   if (sim.HasParticles()) {
     PetscInt n;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
     local_particles = n;
   }
   for (const Part &part : Parts(sim, &local_particles)) PetscCall(WritePart(sim, viewer, part));
@@ -941,12 +941,12 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   ngas /= 2;
   // what a restart checks
   const std::string solids = SolidNames(sim), gases = GasNames(sim);
-  const PetscInt    cells[3] = {sim.grid.cells[0], sim.grid.cells[1], sim.grid.dim == 3 ? sim.grid.cells[2] : 1};
+  const PetscInt    cells[3] = {sim.mpm.grid.cells[0], sim.mpm.grid.cells[1], sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1};
   const PetscInt    counts[2] = {nrec, ngas};
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "scene", PETSC_STRING, sim.run.scene.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "solid_materials", PETSC_STRING, solids.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "gas_materials", PETSC_STRING, gases.c_str()));
-  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dim", PETSC_INT, &sim.grid.dim));
+  PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "dim", PETSC_INT, &sim.mpm.grid.dim));
   for (int d = 0; d < 3; ++d) PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", (std::string("cells_") + "xyz"[d]).c_str(), PETSC_INT, &cells[d]));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "ranks", PETSC_INT, &sim.size));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "output_records", PETSC_INT, &counts[0]));
@@ -1021,9 +1021,9 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
   // Same scene?
   PetscInt dim = 0, cells[3], saved_ranks = 0, nrec = 0, ngas = 0;
   PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", "dim", PETSC_INT, nullptr, &dim));
-  PetscCheck(dim == sim.grid.dim, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not match this run: it is %" PetscInt_FMT "-D, this run is %" PetscInt_FMT "-D (-dim)", file.c_str(), dim, sim.grid.dim);
+  PetscCheck(dim == sim.mpm.grid.dim, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not match this run: it is %" PetscInt_FMT "-D, this run is %" PetscInt_FMT "-D (-dim)", file.c_str(), dim, sim.mpm.grid.dim);
   for (int d = 0; d < 3; ++d) {
-    const PetscInt mine = d < sim.grid.dim ? sim.grid.cells[d] : 1;
+    const PetscInt mine = d < sim.mpm.grid.dim ? sim.mpm.grid.cells[d] : 1;
     PetscCall(PetscViewerHDF5ReadAttribute(viewer, "/", (std::string("cells_") + "xyz"[d]).c_str(), PETSC_INT, nullptr, &cells[d]));
     PetscCheck(cells[d] == mine, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not match this run: %" PetscInt_FMT " cells in direction %d, this run has %" PetscInt_FMT " (-grid_cells)", file.c_str(), cells[d], d, mine);
   }

@@ -25,14 +25,14 @@ namespace burst {
 
 PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
 {
-  PetscInt         n, dim = sim.grid.dim;
+  PetscInt         n, dim = sim.mpm.grid.dim;
   const PetscReal *v, *m, *e;
   PetscReal        local[8] = {0, 0, 0, 0, 0, 0, 0, 0}, global[8];
   PetscFunctionBeginUser;
   r = EnergyReport{};
   if (!sim.HasParticles()) PetscFunctionReturn(PETSC_SUCCESS); // a gas-only scene
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::mass, &m));
   PetscCall(fields.Get(field::internal_energy, &e));
@@ -46,14 +46,14 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
     local[1] += e[p];
     local[6] += m[p];
   }
-  local[2] = sim.diag.external_work;
-  local[7] = sim.diag.removed_energy;
+  local[2] = sim.mpm.diag.external_work;
+  local[7] = sim.mpm.diag.removed_energy;
   // parts of the internal energy kept by the models: failure energy, plastic work, heat
-  PetscReal   parts_local[5] = {0, 0, 0, sim.diag.viscous_work, 0}, parts[5];
+  PetscReal   parts_local[5] = {0, 0, 0, sim.mpm.diag.viscous_work, 0}, parts[5];
   const char *part_names[5] = {"failure_energy", "plastic_work", "plastic_heat", nullptr, "elastic_energy"};
-  const bool  elastic_known = SwarmHasModelField(sim, "elastic_energy");
+  const bool  elastic_known = SwarmHasModelField(sim.mpm, "elastic_energy");
   for (int k = 0; k < 5; ++k)
-    if (part_names[k] && SwarmHasModelField(sim, part_names[k])) {
+    if (part_names[k] && SwarmHasModelField(sim.mpm, part_names[k])) {
       const PetscReal *values;
       PetscCall(fields.Get(part_names[k], &values));
       for (PetscInt p = 0; p < n; ++p) parts_local[k] += values[p];
@@ -76,7 +76,7 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   for (int d = 0; d < 3; ++d) r.momentum[d] = global[3 + d];
   r.mass         = global[6];
   sim.output.energy_scale = PetscMax(sim.output.energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
-  r.balance_error = sim.output.energy_scale > 0 ? (r.total - r.external_work - sim.diag.initial_energy) / sim.output.energy_scale : 0;
+  r.balance_error = sim.output.energy_scale > 0 ? (r.total - r.external_work - sim.mpm.diag.initial_energy) / sim.output.energy_scale : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -84,13 +84,13 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
 // gathered to every rank.
 static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
 {
-  PetscInt          n, dim = sim.grid.dim;
+  PetscInt          n, dim = sim.mpm.grid.dim;
   const PetscReal  *x, *X0, *sigma;
   const PetscInt64 *pid;
   PetscReal         local[10] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0}, global[10];
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::position0, &X0));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
@@ -106,7 +106,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
     }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.next_pid);
+  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.mpm.next_pid);
   for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -114,7 +114,7 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
 // The id of the particle nearest to -monitor_track_point (the smallest id on a tie).
 static PetscErrorCode NearestParticle(Simulation &sim)
 {
-  PetscInt          n, dim = sim.grid.dim;
+  PetscInt          n, dim = sim.mpm.grid.dim;
   const PetscReal  *x;
   const PetscInt64 *pid;
   struct {
@@ -122,8 +122,8 @@ static PetscErrorCode NearestParticle(Simulation &sim)
     PetscInt64 id;
   } local = {PETSC_MAX_REAL, -1};
   PetscFunctionBeginUser;
-  SwarmAccess fields(sim.swarm);
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
   for (PetscInt p = 0; p < n; ++p) {
@@ -138,7 +138,7 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   candidate = local.d2 == best ? local.id : PETSC_MAX_INT;
   PetscCallMPI(MPI_Allreduce(&candidate, &id, 1, MPIU_INT64, MPI_MIN, sim.comm));
   sim.output.track_pid = (PetscInt)id;
-  PetscCall(PetscInfo(sim.swarm, "Tracing particle %" PetscInt64_FMT " at %g m from -monitor_track_point\n", id, (double)std::sqrt(best)));
+  PetscCall(PetscInfo(sim.mpm.swarm, "Tracing particle %" PetscInt64_FMT " at %g m from -monitor_track_point\n", id, (double)std::sqrt(best)));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -196,12 +196,12 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   for (int d = 0; d < 3; ++d) {
     local[kOpen + 1 + d]        = f.momentum[d];
     local[kOpen + 6 + d]        = f.impulse[d];
-    local[kRemovedMomentum + d] = sim.diag.removed_momentum[d];
-    local[kBcImpulse + d]       = sim.diag.bc_impulse[d];
+    local[kRemovedMomentum + d] = sim.mpm.diag.removed_momentum[d];
+    local[kBcImpulse + d]       = sim.mpm.diag.bc_impulse[d];
   }
   local[kOpen + 4]      = f.energy;
   local[kOpen + 5]      = f.work;
-  local[kRemovedMass]   = sim.diag.removed_mass;
+  local[kRemovedMass]   = sim.mpm.diag.removed_mass;
   for (int k = 0; k < 6; ++k) local[kFaceMass + k] = f.face_mass[k / 2][k % 2];
   const auto diagnostics = sim.ice->EnergyDiagnostics(); // kDrag .. kExchangeFallback, in its order
   for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) local[kDrag + k] = *diagnostics[k];
@@ -260,7 +260,7 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.mass = b.solid_mass + b.gas_mass + b.open_mass + b.removed_mass;
   for (int d = 0; d < 3; ++d) b.momentum[d] = b.solid_momentum[d] + b.gas_momentum[d] + b.open_momentum[d] + b.removed_momentum[d] - b.face_impulse[d] - b.bc_impulse[d];
   b.energy = b.solid_kinetic + b.solid_internal + b.heat_to_particles - b.reactant_thermal + b.gas_kinetic + b.gas_internal + b.open_energy + b.open_work + b.removed_energy - b.external_work - b.chemical;
-  PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
+  PetscReal *init = sim.mpm.diag.budget_initial, *scale = sim.mpm.diag.budget_scale;
   if (initial) {
     init[0] = b.mass;
     for (int d = 0; d < 3; ++d) init[1 + d] = b.momentum[d];
@@ -316,8 +316,8 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   if (sim.output.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
   if (!sim.restarted) { // a restart keeps the initial energy and the scale of the balance
     PetscCall(ComputeEnergies(sim, r));
-    sim.diag.initial_energy  = r.total - r.external_work;
-    sim.diag.initial_kinetic = r.kinetic;
+    sim.mpm.diag.initial_energy  = r.total - r.external_work;
+    sim.mpm.diag.initial_kinetic = r.kinetic;
     if (sim.ice) { // the budgets' initial sums (and the gas totals they are made of)
       IceTotals gas;
       Budget    b;
@@ -327,7 +327,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   }
   PetscBool expansion = PETSC_FALSE; // the -grady cylinder's mean radial velocity gets a column
   PetscReal velocity;
-  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &velocity));
+  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim.mpm, &expansion, &velocity));
   bool continued = false;
   if (!sim.rank && sim.restarted) PetscCall(ContinueMonitorFile(sim, sim.output.dir + "/monitor.csv", &continued));
   if (!sim.rank && !continued) {
@@ -349,7 +349,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     if (sim.phases.Enabled()) { // the fire's histories (src/phases.hpp)
       std::fprintf(csv, ",phase");
-      for (const auto &m : sim.materials) std::fprintf(csv, ",temperature_max_%s,temperature_mean_%s", m->Name(), m->Name());
+      for (const auto &m : sim.mpm.materials) std::fprintf(csv, ",temperature_max_%s,temperature_mean_%s", m->Name(), m->Name());
     }
     std::fprintf(csv, "\n");
   }
@@ -380,8 +380,8 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   PetscReal rms = 0, max = 0, track[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   if (sim.analytic) {
     PetscCall(AnalyticDisplacementError(sim, &rms, &max));
-    sim.diag.max_error_displacement  = PetscMax(sim.diag.max_error_displacement, rms);
-    sim.diag.last_error_displacement = rms;
+    sim.mpm.diag.max_error_displacement  = PetscMax(sim.mpm.diag.max_error_displacement, rms);
+    sim.mpm.diag.last_error_displacement = rms;
   }
   if (sim.output.track_pid >= 0) PetscCall(TrackedParticle(sim, track));
   IceTotals gas;
@@ -395,14 +395,14 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
   }
   PetscBool expansion = PETSC_FALSE;
   PetscReal expansion_velocity = 0;
-  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim, &expansion, &expansion_velocity));
+  if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim.mpm, &expansion, &expansion_velocity));
   std::vector<PetscReal> phase_temperatures; // per material: the hottest particle, the mass-weighted mean
   if (sim.phases.Enabled()) PetscCall(PhasesTemperatures(sim, phase_temperatures));
   if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
   else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && sim.output.monitor_csv) {
     FILE *csv = sim.output.monitor_csv;
-    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.total_particles);
+    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.mpm.total_particles);
     std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.output.track_pid >= 0)
@@ -416,7 +416,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
         for (int d = 0; d < 3; ++d) std::fprintf(csv, ",%.12e", (double)v[d]);
       std::fprintf(csv, ",%.6e", (double)b.momentum_error);
       for (PetscReal v : {b.heat_to_particles, b.reactant_thermal, b.open_energy, b.open_work, b.removed_energy, b.chemical, b.energy}) std::fprintf(csv, ",%.16e", (double)v);
-      std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
+      std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.mpm.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy, (double)b.solid_cell_energy_transfer);
@@ -439,7 +439,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   EnergyReport r;
   PetscFunctionBeginUser;
   PetscCall(ComputeEnergies(sim, r));
-  const PetscInt bytes = sim.swarm_bytes;
+  const PetscInt bytes = sim.mpm.swarm_bytes;
   PetscReal rms = 0, max = 0;
   if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
   PetscReal Trms = 0, Tmax = 0;
@@ -461,16 +461,16 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscInt64 fallbacks_exchange = 0, fallbacks_class[kIceFallbackClasses] = {}; // the exchange's; all by cell class (IceFallbackClass)
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks_exchange, &fallbacks_exchange, 1, MPIU_INT64, MPI_SUM, sim.comm));
   if (sim.ice) PetscCallMPI(MPI_Allreduce(sim.ice->energy_fallbacks_class, fallbacks_class, kIceFallbackClasses, MPIU_INT64, MPI_SUM, sim.comm));
-  PetscInt64 removed = sim.diag.removed_particles, removed_global = 0;
+  PetscInt64 removed = sim.mpm.diag.removed_particles, removed_global = 0;
   PetscCallMPI(MPI_Allreduce(&removed, &removed_global, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.particle_steps / sim.wall_stepping : 0;
+  const PetscReal rate = sim.wall_stepping > 0 ? (PetscReal)sim.mpm.particle_steps / sim.wall_stepping : 0;
   // With logging on (-log_view) and several ranks: each rank's time in the stepping phases, so a
   // load-balance study sees which rank waits in which phase (-log_view prints only max and max/min).
   struct Phase {
     const char   *name;
     PetscLogEvent event;
   };
-  const Phase phases[] = {{"p2g", sim.ev_p2g}, {"ghost_sums", sim.ev_ghost_sums}, {"grid_update", sim.ev_grid}, {"g2p", sim.ev_g2p}, {"remap", sim.ev_remap}, {"stress", sim.ev_stress}, {"migrate", sim.ev_migrate}, {"time_step", sim.ev_dt}};
+  const Phase phases[] = {{"p2g", sim.mpm.ev_p2g}, {"ghost_sums", sim.mpm.ev_ghost_sums}, {"grid_update", sim.mpm.ev_grid}, {"g2p", sim.mpm.ev_g2p}, {"remap", sim.mpm.ev_remap}, {"stress", sim.mpm.ev_stress}, {"migrate", sim.mpm.ev_migrate}, {"time_step", sim.mpm.ev_dt}};
   constexpr int       num_phases = sizeof(phases) / sizeof(phases[0]);
   PetscBool           logging    = PETSC_FALSE;
   std::vector<double> rank_phase_seconds; // [rank][phase], on rank 0
@@ -495,22 +495,22 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s.precision(17); // round-trip: the budgets are checked to 1e-12
   s << "{\n";
   s << "  \"scene\": \"" << sim.run.scene << "\",\n";
-  s << "  \"dim\": " << sim.grid.dim << ",\n";
+  s << "  \"dim\": " << sim.mpm.grid.dim << ",\n";
   s << "  \"ranks\": " << sim.size << ",\n";
-  s << "  \"cells\": [" << sim.grid.cells[0] << ", " << sim.grid.cells[1] << ", " << (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) << "],\n";
-  s << "  \"grid_lower\": [" << sim.grid.lower[0] << ", " << sim.grid.lower[1] << ", " << sim.grid.lower[2] << "],\n";
-  s << "  \"grid_upper\": [" << sim.grid.upper[0] << ", " << sim.grid.upper[1] << ", " << sim.grid.upper[2] << "],\n";
-  s << "  \"shape\": \"" << ShapeTypeNames[(int)sim.shape] << "\",\n";
-  s << "  \"scheme\": \"" << StepSchemeNames[(int)sim.scheme] << "\",\n";
-  s << "  \"flip_fraction\": " << sim.flip_fraction << ",\n";
-  s << "  \"particles\": " << sim.total_particles << ",\n";
+  s << "  \"cells\": [" << sim.mpm.grid.cells[0] << ", " << sim.mpm.grid.cells[1] << ", " << (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1) << "],\n";
+  s << "  \"grid_lower\": [" << sim.mpm.grid.lower[0] << ", " << sim.mpm.grid.lower[1] << ", " << sim.mpm.grid.lower[2] << "],\n";
+  s << "  \"grid_upper\": [" << sim.mpm.grid.upper[0] << ", " << sim.mpm.grid.upper[1] << ", " << sim.mpm.grid.upper[2] << "],\n";
+  s << "  \"shape\": \"" << ShapeTypeNames[(int)sim.mpm.shape] << "\",\n";
+  s << "  \"scheme\": \"" << StepSchemeNames[(int)sim.mpm.scheme] << "\",\n";
+  s << "  \"flip_fraction\": " << sim.mpm.flip_fraction << ",\n";
+  s << "  \"particles\": " << sim.mpm.total_particles << ",\n";
   s << "  \"removed_particles\": " << removed_global << ",\n";
   s << "  \"steps\": " << sim.step << ",\n";
   s << "  \"final_time\": " << sim.time << ",\n";
   s << "  \"kinetic_energy\": " << r.kinetic << ",\n";
   s << "  \"internal_energy\": " << r.internal << ",\n";
   s << "  \"external_work\": " << r.external_work << ",\n";
-  s << "  \"initial_energy\": " << sim.diag.initial_energy << ",\n";
+  s << "  \"initial_energy\": " << sim.mpm.diag.initial_energy << ",\n";
   s << "  \"energy_balance_error\": " << balance_error << ",\n";
   if (sim.ice) s << "  \"solid_energy_balance_error\": " << r.balance_error << ",\n";
   s << "  \"momentum\": [" << r.momentum[0] << ", " << r.momentum[1] << ", " << r.momentum[2] << "],\n";
@@ -519,7 +519,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << "  \"analytic\": \"" << sim.analytic->Name() << "\",\n";
     s << "  \"displacement_error_rms\": " << rms << ",\n";
     s << "  \"displacement_error_max\": " << max << ",\n";
-    s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.diag.max_error_displacement, rms) << ",\n";
+    s << "  \"displacement_error_rms_max_over_time\": " << PetscMax(sim.mpm.diag.max_error_displacement, rms) << ",\n";
     if (sim.analytic->HasTemperature()) s << "  \"temperature_error_rms\": " << Trms << ",\n  \"temperature_error_max\": " << Tmax << ",\n";
   }
   s << "  \"failure_energy\": " << r.failure_energy << ",\n";
@@ -528,7 +528,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << "  \"viscous_work\": " << r.viscous_work << ",\n";
   s << "  \"stored_elastic_energy\": " << r.stored_elastic << ",\n";
   s << "  \"unaccounted_internal_energy\": " << r.unaccounted << ",\n";
-  if (sim.HasParticles()) PetscCall(FragmentsSummary(sim, s));
+  if (sim.HasParticles()) PetscCall(FragmentsSummary(sim.mpm, s));
   if (sim.taylor) PetscCall(TaylorSummary(sim, s));
   if (sim.ice) {
     const IceTotals &g0 = sim.ice->initial;
@@ -537,7 +537,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"momentum\": [" << gas.momentum[0] << ", " << gas.momentum[1] << ", " << gas.momentum[2] << "]";
     s << ", \"internal_energy\": " << gas.internal_energy << ", \"kinetic_energy\": " << gas.kinetic_energy << ", \"total_energy\": " << e << ", \"total_energy_change\": " << (e - e0) / e0;
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
-    const PetscReal cells = (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1);
+    const PetscReal cells = (PetscReal)sim.mpm.grid.cells[0] * sim.mpm.grid.cells[1] * (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1);
     s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"energy_fallbacks_exchange\": " << fallbacks_exchange << ", \"energy_fallbacks_by_class\": {";
     for (int k = 0; k < kIceFallbackClasses; ++k) s << (k ? ", " : "") << "\"" << IceFallbackClassNames[k] << "\": " << fallbacks_class[k];
@@ -551,7 +551,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
       o << "[" << v[0] << ", " << v[1] << ", " << v[2] << "]";
       return o.str();
     };
-    const PetscReal *init = sim.diag.budget_initial, *scale = sim.diag.budget_scale;
+    const PetscReal *init = sim.mpm.diag.budget_initial, *scale = sim.mpm.diag.budget_scale;
     s << "  \"budget\": {\n";
     s << "    \"mass\": {\"particles\": " << b.solid_mass << ", \"gas\": " << b.gas_mass << ", \"open_faces\": " << b.open_mass << ", \"removed_particles\": " << b.removed_mass;
     s << ", \"open_faces_by_face\": {"; // out positive, per domain face
@@ -586,7 +586,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << "},\n";
   }
   { // each rank slot's node count per direction (equal, or set by -grid_balance)
-    const Grid &g = sim.grid;
+    const Grid &g = sim.mpm.grid;
     s << "  \"node_ranges\": {";
     for (PetscInt d = 0; d < 3; ++d) {
       s << (d ? ", " : "") << "\"" << "xyz"[d] << "\": [";
@@ -608,12 +608,12 @@ PetscErrorCode WriteSummary(Simulation &sim)
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.run.scene.c_str(), sim.step, (double)sim.time, (long long)sim.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
-  if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.grid.cells[0] * sim.grid.cells[1] * (sim.grid.dim == 3 ? sim.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.run.scene.c_str(), sim.step, (double)sim.time, (long long)sim.mpm.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
+  if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.mpm.grid.cells[0] * sim.mpm.grid.cells[1] * (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
   if (sim.ice) {
     char chemical[128] = "";
     if (b.chemical > 0) std::snprintf(chemical, sizeof(chemical), ", %.3e of the chemical energy released (%.4g J)", (double)(b.energy_residual / b.chemical), (double)b.chemical);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Budgets (particles, gases, open faces, removed particles, chemical energy): mass error %.3e, momentum %.3e, energy %.3e of the largest term (%.4g kg, %.4g kg m/s, %.4g J); energy residual %.4g J%s\n", (double)b.mass_error, (double)b.momentum_error, (double)b.energy_error, (double)sim.diag.budget_scale[0], (double)sim.diag.budget_scale[1], (double)sim.diag.budget_scale[2], (double)b.energy_residual, chemical));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Budgets (particles, gases, open faces, removed particles, chemical energy): mass error %.3e, momentum %.3e, energy %.3e of the largest term (%.4g kg, %.4g kg m/s, %.4g J); energy residual %.4g J%s\n", (double)b.mass_error, (double)b.momentum_error, (double)b.energy_error, (double)sim.mpm.diag.budget_scale[0], (double)sim.mpm.diag.budget_scale[1], (double)sim.mpm.diag.budget_scale[2], (double)b.energy_residual, chemical));
   }
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: temperature error rms %.4e K, max %.4e K\n", sim.analytic->Name(), (double)Trms, (double)Tmax));

@@ -126,8 +126,8 @@ static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, co
   PetscCall(VecSetBlockSize(vec, f.out_bs));
   PetscCall(PetscObjectSetName((PetscObject)vec, f.out_name));
   PetscCall(VecGetArray(vec, &out));
-  PetscCall(DMSwarmGetField(sim.swarm, f.swarm_name, nullptr, nullptr, &data));
-  if (f.displacement) PetscCall(DMSwarmGetField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
+  PetscCall(DMSwarmGetField(sim.mpm.swarm, f.swarm_name, nullptr, nullptr, &data));
+  if (f.displacement) PetscCall(DMSwarmGetField(sim.mpm.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
   for (PetscInt p = 0; p < n; ++p)
     for (PetscInt c = 0; c < f.out_bs; ++c) {
       PetscReal value = 0;
@@ -139,8 +139,8 @@ static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, co
       }
       out[p * f.out_bs + c] = value;
     }
-  if (f.displacement) PetscCall(DMSwarmRestoreField(sim.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
-  PetscCall(DMSwarmRestoreField(sim.swarm, f.swarm_name, nullptr, nullptr, &data));
+  if (f.displacement) PetscCall(DMSwarmRestoreField(sim.mpm.swarm, DMSwarmPICField_coor, nullptr, nullptr, &x));
+  PetscCall(DMSwarmRestoreField(sim.mpm.swarm, f.swarm_name, nullptr, nullptr, &data));
   PetscCall(VecRestoreArray(vec, &out));
   PetscCall(VecView(vec, viewer));
   PetscCall(VecDestroy(&vec));
@@ -151,7 +151,7 @@ static PetscErrorCode WriteParticleField(Simulation &sim, PetscViewer viewer, co
 static std::vector<ParticleOutputField> ModelFields(const Simulation &sim)
 {
   std::vector<ParticleOutputField> out;
-  for (const auto &m : sim.materials)
+  for (const auto &m : sim.mpm.materials)
     for (const OutputField &f : m->OutputFields()) {
       bool seen = false;
       for (const auto &o : out) seen = seen || std::string(o.out_name) == f.name;
@@ -162,7 +162,7 @@ static std::vector<ParticleOutputField> ModelFields(const Simulation &sim)
 
 static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
 {
-  const PetscInt                   dim = sim.grid.dim;
+  const PetscInt                   dim = sim.mpm.grid.dim;
   std::vector<ParticleOutputField> fields = {
     {DMSwarmPICField_coor, "coordinates", dim, dim, false, false},
     {field::velocity, "velocity", dim, 3, false, false},
@@ -187,7 +187,7 @@ static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
 
 static std::string XdmfParticleGrid(const Simulation &sim, const std::string &file, PetscInt64 n, PetscReal time)
 {
-  const PetscInt     dim = sim.grid.dim;
+  const PetscInt     dim = sim.mpm.grid.dim;
   std::ostringstream s;
   s << "    <Grid Name=\"particles\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
   s << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n";
@@ -228,7 +228,7 @@ static const char grid_group[] = "/nodes";
 
 static std::string XdmfNodeGrid(const Simulation &sim, const std::string &file, PetscReal time)
 {
-  const Grid            &g      = sim.grid;
+  const Grid            &g      = sim.mpm.grid;
   std::vector<GridField> fields = NodalFields(g), velocity = VelocityFields(g);
   fields.insert(fields.begin() + 1, velocity.begin(), velocity.end());
   return XdmfGridBlock(file, grid_group, g.dim, g.cells, g.lower, g.h, false, fields, time);
@@ -261,7 +261,7 @@ PetscErrorCode WriteOutput(Simulation &sim)
   char        name[64];
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(sim.output.ev_output, 0, 0, 0, 0));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
   std::snprintf(name, sizeof(name), "particles_%06d.h5", (int)sim.step);
   std::string path = sim.output.dir + "/" + name, tmp = path + ".tmp";
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
@@ -278,12 +278,12 @@ PetscErrorCode WriteOutput(Simulation &sim)
     path = sim.output.dir + "/" + name;
     tmp  = path + ".tmp";
     PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
-    PetscCall(WriteGridFields(viewer, sim.grid.da_nodes, sim.grid.nodal, grid_group, NodalFields(sim.grid)));
-    PetscCall(WriteGridFields(viewer, sim.grid.da_velocity, sim.grid.velocity, grid_group, VelocityFields(sim.grid)));
+    PetscCall(WriteGridFields(viewer, sim.mpm.grid.da_nodes, sim.mpm.grid.nodal, grid_group, NodalFields(sim.mpm.grid)));
+    PetscCall(WriteGridFields(viewer, sim.mpm.grid.da_velocity, sim.mpm.grid.velocity, grid_group, VelocityFields(sim.mpm.grid)));
     PetscCall(PetscViewerDestroy(&viewer));
     PetscCall(AtomicRename(sim.comm, tmp, path));
   }
-  if (!sim.rank) sim.output.records.push_back({sim.step, sim.time, sim.total_particles});
+  if (!sim.rank) sim.output.records.push_back({sim.step, sim.time, sim.mpm.total_particles});
   PetscCall(WriteCollection(sim, "particles.xmf", false));
   if (sim.output.write_grid) PetscCall(WriteCollection(sim, "grid.xmf", true));
   PetscCall(PetscLogEventEnd(sim.output.ev_output, 0, 0, 0, 0));

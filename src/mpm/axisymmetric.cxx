@@ -12,27 +12,27 @@
 // Every interpolator is defined (linear, uGIMP, cpGIMP, B-spline): their weights are the Cartesian
 // ones in (r, z), as in Uintah and NairnMPM; the GIMP weights are not re-derived for the r-weighted
 // particle domain, which costs first order only in the cells next to the axis.
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 
 namespace burst {
 
-PetscErrorCode AxisymmetricSetUp(Simulation &sim)
+PetscErrorCode AxisymmetricSetUp(MpmSolver &mpm)
 {
-  Grid &g = sim.grid;
+  Grid &g = mpm.grid;
   PetscFunctionBeginUser;
-  if (!sim.axisymmetric) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCheck(g.dim == 2, sim.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric needs -dim 2 (x is the radius, y the axis); got -dim %" PetscInt_FMT, g.dim);
-  PetscCheck(g.lower[0] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric: the radius x must be >= 0, but -grid_lower gives x = %g m", (double)g.lower[0]);
+  if (!mpm.axisymmetric) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCheck(g.dim == 2, mpm.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric needs -dim 2 (x is the radius, y the axis); got -dim %" PetscInt_FMT, g.dim);
+  PetscCheck(g.lower[0] >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric: the radius x must be >= 0, but -grid_lower gives x = %g m", (double)g.lower[0]);
   if (g.lower[0] == 0) {
-    PetscCheck(g.bc[0][0] != FaceBC::Fixed || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric: the axis (x = 0) is a symmetry face; -bc_xmin fixed would also hold the axial velocity there (use symmetry or free)");
+    PetscCheck(g.bc[0][0] != FaceBC::Fixed || mpm.help, mpm.comm, PETSC_ERR_USER_INPUT, "Option -axisymmetric: the axis (x = 0) is a symmetry face; -bc_xmin fixed would also hold the axial velocity there (use symmetry or free)");
     g.bc[0][0] = FaceBC::Symmetry; // v_r = 0 on the axis
   }
   PetscBool heat = PETSC_FALSE;
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-mpm_heat_conduction", &heat, nullptr));
-  PetscCheck(!heat, sim.comm, PETSC_ERR_SUP, "Option -axisymmetric does not support -mpm_heat_conduction yet (its Laplacian is Cartesian)");
+  PetscCheck(!heat, mpm.comm, PETSC_ERR_SUP, "Option -axisymmetric does not support -mpm_heat_conduction yet (its Laplacian is Cartesian)");
   // The empty-node cut-off is a fraction of a full cell's mass: per radian, a cell at r = h.
-  sim.mass_cutoff *= g.h[0];
-  PetscCall(PetscInfo(nullptr, "Axisymmetric: r in [%g, %g] m, z in [%g, %g] m, mass cut-off %g kg/rad\n", (double)g.lower[0], (double)g.upper[0], (double)g.lower[1], (double)g.upper[1], (double)sim.mass_cutoff));
+  mpm.mass_cutoff *= g.h[0];
+  PetscCall(PetscInfo(nullptr, "Axisymmetric: r in [%g, %g] m, z in [%g, %g] m, mass cut-off %g kg/rad\n", (double)g.lower[0], (double)g.upper[0], (double)g.lower[1], (double)g.upper[1], (double)mpm.mass_cutoff));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -18,7 +18,7 @@
 // N0 exp(-m/mu) (Grady, Fragmentation of Rings and Shells, 2006, ch. 2-3).
 // The modelled region is what is counted: a fragment cut by a symmetry plane is one fragment of the
 // quarter model. Failed particles (field `failed` != 0) are not part of any fragment.
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "mpm/swarm_access.hpp"
 #include "util.hpp"
 #include "io/checkpoint_values.hpp"
@@ -108,39 +108,39 @@ bool FitCumulative(std::vector<PetscReal> masses, PetscReal (*f)(PetscReal), Pet
 
 // What the fragment search remembers between steps, for the checkpoint.
 
-PetscErrorCode FragmentsSetUp(Simulation &sim)
+PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
 {
-  Fragments &frag = sim.fragments;
+  Fragments &frag = mpm.fragments;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Fragments and the Grady-Hightower estimate", "Fragments");
+  PetscOptionsBegin(mpm.comm, "", "Fragments and the Grady-Hightower estimate", "Fragments");
   PetscCall(PetscOptionsBool("-fragments", "Find fragments (connected intact particles) at output steps and at the end", "", frag.options.enabled, &frag.options.enabled, nullptr));
   PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", frag.options.distance_factor, &frag.options.distance_factor, nullptr));
-  PetscCall(CheckRange(sim.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
+  PetscCall(CheckRange(mpm.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", frag.options.min_particles, &frag.options.min_particles, nullptr));
   PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
-  PetscCall(CheckRange(sim.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
+  PetscCall(CheckRange(mpm.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
   {
     char     *names[32];
     PetscInt  n = 32;
     PetscBool set;
     PetscCall(PetscOptionsStringArray("-fragments_materials", "Materials whose particles make the fragments and the expansion velocity (e.g. the container, not its filling); default all", "", names, &n, &set));
     if (set) {
-      frag.options.counted.assign(sim.materials.size(), 0);
+      frag.options.counted.assign(mpm.materials.size(), 0);
       for (PetscInt i = 0; i < n; ++i) {
         PetscInt found = -1;
         std::string valid;
-        for (size_t m = 0; m < sim.materials.size(); ++m) {
-          valid += (m ? ", " : "") + std::string(sim.materials[m]->Name());
-          if (sim.materials[m]->Name() == std::string(names[i])) found = (PetscInt)m;
+        for (size_t m = 0; m < mpm.materials.size(); ++m) {
+          valid += (m ? ", " : "") + std::string(mpm.materials[m]->Name());
+          if (mpm.materials[m]->Name() == std::string(names[i])) found = (PetscInt)m;
         }
-        PetscCheck(found >= 0 || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Option -fragments_materials: '%s' is not one of -materials (%s)", names[i], valid.c_str());
+        PetscCheck(found >= 0 || mpm.help, mpm.comm, PETSC_ERR_USER_INPUT, "Option -fragments_materials: '%s' is not one of -materials (%s)", names[i], valid.c_str());
         if (found >= 0) frag.options.counted[found] = 1;
         PetscCall(PetscFree(names[i]));
       }
     }
   }
   PetscCall(PetscOptionsBool("-grady", "Report the Grady-Hightower fragment counts (eqs. 25-26) for the expansion velocity measured at the first failure", "", frag.options.grady, &frag.options.grady, nullptr));
-  PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", frag.options.center, sim.grid.dim, nullptr));
+  PetscCall(OptionsRealVector(PetscOptionsObject, "-grady_center", "Axis of the cylinder or ring (m)", frag.options.center, mpm.grid.dim, nullptr));
   PetscCall(PetscOptionsReal("-grady_radius", "Initial mean radius R0 of eq. 25 (m)", "", frag.options.radius, &frag.options.radius, nullptr));
   PetscCall(PetscOptionsReal("-grady_sector", "Angle of the modelled sector (degrees; 90 for a quarter)", "", frag.options.sector, &frag.options.sector, nullptr));
   PetscCall(PetscOptionsReal("-grady_density", "Density rho (kg/m^3)", "", frag.options.density, &frag.options.density, nullptr));
@@ -155,15 +155,15 @@ PetscErrorCode FragmentsSetUp(Simulation &sim)
   if (frag.options.grady) {
     const char *names[]  = {"-grady_radius", "-grady_density", "-grady_youngs_modulus", "-grady_fracture_toughness", "-grady_specific_heat", "-grady_thermal_expansion", "-grady_thermal_diffusivity", "-grady_yield_stress", "-grady_shear_rate"};
     const PetscReal v[] = {frag.options.radius, frag.options.density, frag.options.youngs_modulus, frag.options.toughness, frag.options.specific_heat, frag.options.expansion, frag.options.diffusivity, frag.options.yield_stress, frag.options.shear_rate};
-    for (int i = 0; i < 9; ++i) PetscCall(CheckRange(sim.comm, names[i], v[i], 0, PETSC_MAX_REAL, PETSC_TRUE));
+    for (int i = 0; i < 9; ++i) PetscCall(CheckRange(mpm.comm, names[i], v[i], 0, PETSC_MAX_REAL, PETSC_TRUE));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Does the swarm carry a model field `name`? (A material lists it in OutputFields.)
-bool SwarmHasModelField(const Simulation &sim, const char name[])
+bool SwarmHasModelField(const MpmSolver &mpm, const char name[])
 {
-  for (const auto &m : sim.materials)
+  for (const auto &m : mpm.materials)
     for (const OutputField &f : m->OutputFields())
       if (std::string(f.name) == name) return true;
   return false;
@@ -183,18 +183,18 @@ static PetscReal GradyCount(const FragmentOptions &o, PetscReal gamma, PetscReal
 // The mass-weighted mean radial velocity about the Grady axis of the counted materials, and the
 // number of their particles where a failure criterion has been met: failed, or (crack band) softening
 // since a criterion, so the Grady velocity means the same with every regularisation.
-static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, PetscReal *failed_count)
+static PetscErrorCode MeanRadialVelocity(MpmSolver &mpm, PetscReal *velocity, PetscReal *failed_count)
 {
-  Fragments &frag = sim.fragments;
-  SwarmAccess      fields(sim.swarm);
+  Fragments &frag = mpm.fragments;
+  SwarmAccess      fields(mpm.swarm);
   const PetscInt  *failed = nullptr, *softening = nullptr, *material;
   const PetscReal *x, *v, *m;
-  PetscInt         n, dim = sim.grid.dim;
+  PetscInt         n, dim = mpm.grid.dim;
   PetscReal        local[3] = {0, 0, 0}, global[3];
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  if (SwarmHasModelField(sim, state_field::failed)) PetscCall(fields.Get(state_field::failed, &failed));
-  if (SwarmHasModelField(sim, state_field::softening_criteria)) PetscCall(fields.Get(state_field::softening_criteria, &softening));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  if (SwarmHasModelField(mpm, state_field::failed)) PetscCall(fields.Get(state_field::failed, &failed));
+  if (SwarmHasModelField(mpm, state_field::softening_criteria)) PetscCall(fields.Get(state_field::softening_criteria, &softening));
   PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
@@ -211,7 +211,7 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
     local[1] += m[p];
   }
   PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Allreduce(local, global, 3, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(local, global, 3, MPIU_REAL, MPI_SUM, mpm.comm));
   *velocity = global[1] > 0 ? global[0] / global[1] : 0;
   if (failed_count) *failed_count = global[2];
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -219,44 +219,44 @@ static PetscErrorCode MeanRadialVelocity(Simulation &sim, PetscReal *velocity, P
 
 // Records the mean radial velocity of the material (mass weighted) when a failure criterion is first
 // met anywhere (a particle fails, or starts softening under the crack band).
-PetscErrorCode FragmentsMonitor(Simulation &sim)
+PetscErrorCode FragmentsMonitor(MpmSolver &mpm)
 {
-  Fragments &frag = sim.fragments;
+  Fragments &frag = mpm.fragments;
   PetscReal velocity, failed;
   PetscFunctionBeginUser;
-  if (!frag.options.grady || frag.fracture_velocity >= 0 || !SwarmHasModelField(sim, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(MeanRadialVelocity(sim, &velocity, &failed));
+  if (!frag.options.grady || frag.fracture_velocity >= 0 || !SwarmHasModelField(mpm, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(MeanRadialVelocity(mpm, &velocity, &failed));
   if (failed > 0) {
     frag.fracture_velocity = velocity;
-    frag.fracture_time     = sim.time;
-    PetscCall(PetscInfo(sim.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)sim.time, (double)frag.fracture_velocity));
+    frag.fracture_time     = mpm.time;
+    PetscCall(PetscInfo(mpm.swarm, "First failure at t = %g s: mean radial velocity %g m/s\n", (double)mpm.time, (double)frag.fracture_velocity));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FragmentsExpansionVelocity(Simulation &sim, PetscBool *enabled, PetscReal *velocity)
+PetscErrorCode FragmentsExpansionVelocity(MpmSolver &mpm, PetscBool *enabled, PetscReal *velocity)
 {
-  Fragments &frag = sim.fragments;
+  Fragments &frag = mpm.fragments;
   PetscFunctionBeginUser;
   *enabled  = frag.options.grady;
   *velocity = 0;
-  if (frag.options.grady) PetscCall(MeanRadialVelocity(sim, velocity, nullptr));
+  if (frag.options.grady) PetscCall(MeanRadialVelocity(mpm, velocity, nullptr));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
+PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
 {
-  Fragments &frag = sim.fragments;
-  const PetscInt dim = sim.grid.dim;
+  Fragments &frag = mpm.fragments;
+  const PetscInt dim = mpm.grid.dim;
   PetscInt       n;
   PetscFunctionBeginUser;
   if (!frag.options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
-  const bool       has_failed = SwarmHasModelField(sim, state_field::failed);
-  SwarmAccess      fields(sim.swarm);
+  const bool       has_failed = SwarmHasModelField(mpm, state_field::failed);
+  SwarmAccess      fields(mpm.swarm);
   const PetscReal *x, *v, *m, *V;
   const PetscInt  *failed = nullptr, *material;
   PetscInt        *fragment;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
   PetscCall(fields.Get(field::material, &material));
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
@@ -277,7 +277,7 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
     s_max   = PetscMax(s_max, size[p]);
   }
   PetscReal s_global;
-  PetscCallMPI(MPI_Allreduce(&s_max, &s_global, 1, MPIU_REAL, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&s_max, &s_global, 1, MPIU_REAL, MPI_MAX, mpm.comm));
   const PetscReal factor = frag.options.distance_factor;
   HashGrid        grid{factor * PetscMax(s_global, 1e-300), dim, {}};
   const PetscInt  ni = (PetscInt)intact.size();
@@ -301,17 +301,17 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   for (PetscInt a = 0; a < ni; ++a)
     if (uf.Find(a) == a) root_index[a] = nroots++;
   PetscInt offset = 0;
-  PetscCallMPI(MPI_Exscan(&nroots, &offset, 1, MPIU_INT, MPI_SUM, sim.comm));
-  if (!sim.rank) offset = 0;
+  PetscCallMPI(MPI_Exscan(&nroots, &offset, 1, MPIU_INT, MPI_SUM, mpm.comm));
+  if (!mpm.rank) offset = 0;
   auto label_of = [&](PetscInt a) { return offset + root_index[uf.Find(a)]; };
 
   // 2. halo exchange: particles within one hash cell of the owned box
   PetscInt xs[3], xm[3];
-  PetscCall(DMDAGetCorners(sim.grid.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
+  PetscCall(DMDAGetCorners(mpm.grid.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscReal lo[3], hi[3];
   for (PetscInt d = 0; d < dim; ++d) {
-    lo[d] = sim.grid.lower[d] + xs[d] * sim.grid.h[d];
-    hi[d] = sim.grid.lower[d] + PetscMin(xs[d] + xm[d], sim.grid.cells[d]) * sim.grid.h[d];
+    lo[d] = mpm.grid.lower[d] + xs[d] * mpm.grid.h[d];
+    hi[d] = mpm.grid.lower[d] + PetscMin(xs[d] + xm[d], mpm.grid.cells[d]) * mpm.grid.h[d];
   }
   std::vector<PetscReal> halo; // x[dim], size, label per particle
   const PetscInt         stride = dim + 2;
@@ -325,15 +325,15 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
     halo.push_back((PetscReal)label_of(a));
   }
   std::vector<PetscInt> pairs; // (label here, label there)
-  if (sim.size > 1) {
+  if (mpm.size > 1) {
     PetscMPIInt              count = (PetscMPIInt)halo.size();
-    std::vector<PetscMPIInt> counts(sim.size), displs(sim.size, 0);
-    PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm));
-    for (int r = 1; r < sim.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
-    std::vector<PetscReal> all(displs[sim.size - 1] + counts[sim.size - 1]);
-    PetscCallMPI(MPI_Allgatherv(halo.data(), count, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, sim.comm));
-    for (int r = 0; r < sim.size; ++r) {
-      if (r == sim.rank) continue;
+    std::vector<PetscMPIInt> counts(mpm.size), displs(mpm.size, 0);
+    PetscCallMPI(MPI_Allgather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, mpm.comm));
+    for (int r = 1; r < mpm.size; ++r) displs[r] = displs[r - 1] + counts[r - 1];
+    std::vector<PetscReal> all(displs[mpm.size - 1] + counts[mpm.size - 1]);
+    PetscCallMPI(MPI_Allgatherv(halo.data(), count, MPIU_REAL, all.data(), counts.data(), displs.data(), MPIU_REAL, mpm.comm));
+    for (int r = 0; r < mpm.size; ++r) {
+      if (r == mpm.rank) continue;
       for (PetscMPIInt k = displs[r]; k < displs[r] + counts[r]; k += stride) {
         const PetscReal *xb = &all[k];
         const PetscReal  sb = all[k + dim];
@@ -349,16 +349,16 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   }
   // 3. merge the labels of all ranks on rank 0, broadcast label -> fragment
   PetscInt total_labels = 0;
-  PetscCallMPI(MPI_Allreduce(&nroots, &total_labels, 1, MPIU_INT, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&nroots, &total_labels, 1, MPIU_INT, MPI_SUM, mpm.comm));
   PetscMPIInt              npairs = (PetscMPIInt)pairs.size();
-  std::vector<PetscMPIInt> pcounts(sim.size), pdispls(sim.size, 0);
-  PetscCallMPI(MPI_Gather(&npairs, 1, MPI_INT, pcounts.data(), 1, MPI_INT, 0, sim.comm));
-  for (int r = 1; r < sim.size; ++r) pdispls[r] = pdispls[r - 1] + pcounts[r - 1];
-  std::vector<PetscInt> all_pairs(sim.rank ? 0 : pdispls[sim.size - 1] + pcounts[sim.size - 1]);
-  PetscCallMPI(MPI_Gatherv(pairs.data(), npairs, MPIU_INT, all_pairs.data(), pcounts.data(), pdispls.data(), MPIU_INT, 0, sim.comm));
+  std::vector<PetscMPIInt> pcounts(mpm.size), pdispls(mpm.size, 0);
+  PetscCallMPI(MPI_Gather(&npairs, 1, MPI_INT, pcounts.data(), 1, MPI_INT, 0, mpm.comm));
+  for (int r = 1; r < mpm.size; ++r) pdispls[r] = pdispls[r - 1] + pcounts[r - 1];
+  std::vector<PetscInt> all_pairs(mpm.rank ? 0 : pdispls[mpm.size - 1] + pcounts[mpm.size - 1]);
+  PetscCallMPI(MPI_Gatherv(pairs.data(), npairs, MPIU_INT, all_pairs.data(), pcounts.data(), pdispls.data(), MPIU_INT, 0, mpm.comm));
   std::vector<PetscInt> fragment_of(total_labels, 0);
   PetscInt              nfragments = 0;
-  if (!sim.rank) {
+  if (!mpm.rank) {
     UnionFind labels(total_labels);
     for (size_t k = 0; k + 1 < all_pairs.size(); k += 2) labels.Join(all_pairs[k], all_pairs[k + 1]);
     std::vector<PetscInt> id(total_labels, -1);
@@ -368,12 +368,12 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       fragment_of[l] = id[r];
     }
   }
-  PetscCallMPI(MPI_Bcast(&nfragments, 1, MPIU_INT, 0, sim.comm));
-  PetscCallMPI(MPI_Bcast(fragment_of.data(), total_labels, MPIU_INT, 0, sim.comm));
+  PetscCallMPI(MPI_Bcast(&nfragments, 1, MPIU_INT, 0, mpm.comm));
+  PetscCallMPI(MPI_Bcast(fragment_of.data(), total_labels, MPIU_INT, 0, mpm.comm));
 
   // fragment sums: particles, mass, momentum, first moment, second moment (xx, xy, xz, yy, yz, zz)
   const int             nsum = 2 + 2 * 3 + 6;
-  std::vector<PetscReal> sums((size_t)nsum * nfragments, 0), total(sim.rank ? 0 : (size_t)nsum * nfragments);
+  std::vector<PetscReal> sums((size_t)nsum * nfragments, 0), total(mpm.rank ? 0 : (size_t)nsum * nfragments);
   for (PetscInt a = 0; a < ni; ++a) {
     const PetscInt p = intact[a], fr = fragment_of[label_of(a)];
     fragment[p]      = fr;
@@ -392,10 +392,10 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
   for (PetscInt p = 0; p < n; ++p)
     if (frag.options.Counts(material[p])) mass_local += m[p];
   PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, sim.comm));
-  PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, mpm.comm));
+  PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, mpm.comm));
   if (frag.initial_mass < 0) frag.initial_mass = mass_total;
-  if (!sim.rank) {
+  if (!mpm.rank) {
     frag.last_count        = 0;
     frag.largest_mass      = 0;
     frag.total_intact_mass = 0;
@@ -409,8 +409,8 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       frag.largest_mass = PetscMax(frag.largest_mass, s[1]);
       frag.total_intact_mass += s[1];
     }
-    if (write_table) {
-      const std::string path = sim.output.dir + "/fragments.csv", tmp = path + ".tmp";
+    if (table_path) {
+      const std::string path = table_path, tmp = path + ".tmp";
       {
         std::ofstream out(tmp);
         out << "fragment,particles,mass,centroid_x,centroid_y,centroid_z,velocity_x,velocity_y,velocity_z," << (dim == 3 ? "size_area" : "size_length") << "\n";
@@ -431,15 +431,15 @@ PetscErrorCode FindFragments(Simulation &sim, PetscBool write_table)
       PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", path.c_str());
     }
   }
-  PetscCallMPI(MPI_Bcast(&frag.last_count, 1, MPIU_INT64, 0, sim.comm));
-  PetscCall(PetscPrintf(sim.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)sim.time, frag.last_count, frag.options.min_particles, (double)frag.options.min_mass_fraction, nfragments, (double)frag.largest_mass, (double)frag.total_intact_mass));
+  PetscCallMPI(MPI_Bcast(&frag.last_count, 1, MPIU_INT64, 0, mpm.comm));
+  PetscCall(PetscPrintf(mpm.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)mpm.time, frag.last_count, frag.options.min_particles, (double)frag.options.min_mass_fraction, nfragments, (double)frag.largest_mass, (double)frag.total_intact_mass));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Adds the fragment and Grady entries to summary.json (rank 0; `out` is inside the JSON object).
-PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
+PetscErrorCode FragmentsSummary(const MpmSolver &mpm, std::ostream &out)
 {
-  const Fragments &frag = sim.fragments;
+  const Fragments &frag = mpm.fragments;
   PetscFunctionBeginUser;
   if (frag.options.enabled) {
     out << "  \"fragment_count\": " << frag.last_count << ",\n";
@@ -475,7 +475,7 @@ PetscErrorCode FragmentsSummary(const Simulation &sim, std::ostream &out)
       out << "  \"grady_tension\": null,\n  \"grady_shear\": null,\n";
     }
   }
-  (void)sim;
+  (void)mpm;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

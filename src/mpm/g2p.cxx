@@ -20,7 +20,7 @@ namespace burst {
 
 namespace {
 struct G2PKernel {
-  Simulation        &sim;
+  MpmSolver        &mpm;
   G2PRequest         what;
   const PetscScalar *vel;
   const PetscScalar *star; // XPIC: ghosted v* per velocity field, laid out as vel (first DIM of each 2 DIM)
@@ -28,9 +28,9 @@ struct G2PKernel {
   PetscErrorCode operator()()
   {
     PetscFunctionBeginUser;
-    const Transfer tr = what.velocity ? sim.transfer : Transfer::FlipPic;
+    const Transfer tr = what.velocity ? mpm.transfer : Transfer::FlipPic;
     if constexpr (DIM == 2) {
-      if (sim.axisymmetric) {
+      if (mpm.axisymmetric) {
         PetscCall(ByTransfer<DIM, S, true>(tr));
         PetscFunctionReturn(PETSC_SUCCESS);
       }
@@ -71,19 +71,19 @@ struct G2PKernel {
   PetscErrorCode Loop()
   {
     constexpr bool APIC = TR == Transfer::APIC, XPIC = TR == Transfer::XPIC;
-    const Grid          &g = sim.grid;
+    const Grid          &g = mpm.grid;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
     const LocalNodeIndex index(g);
-    const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
+    const PetscReal      flip = mpm.flip_fraction, dt = mpm.dt;
     PetscInt             n;
     PetscReal           *x, *v, *L, *F, *vol, *affine = nullptr;
     const PetscReal     *hw, *fext, *vol0;
     const PetscInt      *failed = nullptr, *material = nullptr;
-    const bool           exponential = sim.f_update == FUpdate::Exponential, external = HasExternalForces(sim);
+    const bool           exponential = mpm.f_update == FUpdate::Exponential, external = HasExternalForces(mpm);
     PetscReal            work = 0;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::L, &L));
@@ -94,16 +94,16 @@ struct G2PKernel {
     PetscCall(fields.Get(field::volume0, &vol0));
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
-    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
+    if (g.num_velocity_fields > 1 && mpm.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
-    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = mpm.stencil_cache.Prepare<DIM, S>(n, mpm.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       const Stencil<DIM, S> &st = stencils[p];
       if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      if (material && material[p] == sim.rigid_material) {
+      if (material && material[p] == mpm.rigid_material) {
         // A rigid particle moves with the body's prescribed velocity (its field's nodal velocity):
         // no gather; L = 0 and F, V stay as they are.
-        const PetscReal *v_r = sim.rigid_velocity;
+        const PetscReal *v_r = mpm.rigid_velocity;
         if (what.velocity) {
           SetParticleVelocity<DIM>(v + DIM * p, v_r, external ? fext + DIM * p : nullptr, dt, work);
           if constexpr (APIC)
@@ -117,7 +117,7 @@ struct G2PKernel {
       }
       PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
       const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
-      const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
+      const PetscInt vf = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       // grad[a][0..1] as one pair of doubles per row: the same products and sums, lane by lane (the
       // scalar form keeps 12 accumulators live in 3-D and spills)
       Pair grad01[DIM] = {};
@@ -214,9 +214,9 @@ struct G2PKernel {
         vol[p] = vol0[p] * Mat3CMap(Fq).determinant();
       }
     }
-    sim.diag.external_work += work;
+    mpm.diag.external_work += work;
     // the particles moved, or their cpGIMP widths changed with F: the stencils are stale
-    if (what.position || (what.kinematics && S == ShapeType::CpGimp)) sim.stencil_cache.Invalidate();
+    if (what.position || (what.kinematics && S == ShapeType::CpGimp)) mpm.stencil_cache.Invalidate();
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -224,33 +224,33 @@ struct G2PKernel {
 // One application of S+ S to a grid field w (ghosted, layout of the velocity vector, first DIM entries
 // of each field): u_p = sum N w_I, then sum_p N m_p u_p summed into `sum` (ghosted, zeroed here).
 struct XPICKernel {
-  Simulation        &sim;
+  MpmSolver        &mpm;
   const PetscScalar *w;
   PetscScalar       *sum;
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = mpm.grid;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F, *m;
     const PetscInt      *failed = nullptr, *material = nullptr;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(field::mass, &m));
     if (g.num_velocity_fields > 1) PetscCall(fields.Get(field::material, &material));
-    if (g.num_velocity_fields > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
+    if (g.num_velocity_fields > 1 && mpm.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
-    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = mpm.stencil_cache.Prepare<DIM, S>(n, mpm.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       const Stencil<DIM, S> &st = stencils[p];
       if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      const PetscInt vf = g.num_velocity_fields > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0;
+      const PetscInt vf = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0;
       PetscReal      u[DIM] = {};
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal *) {
         const PetscScalar *wv = w + index(i, j, k) * vdof + vf * 2 * DIM;
@@ -271,11 +271,11 @@ struct XPICKernel {
 // the first m terms of the series for the particle velocities that FLIP keeps and PIC smooths away;
 // m = 1 is PIC, m -> infinity is FLIP. S+S is one G2P then one mass-weighted P2G (m - 1 particle
 // passes). Nodes under the mass cut-off stay zero; the rigid field keeps its prescribed velocity.
-static PetscErrorCode XPICExtrapolate(Simulation &sim)
+static PetscErrorCode XPICExtrapolate(MpmSolver &mpm)
 {
-  Grid          &g = sim.grid;
+  Grid          &g = mpm.grid;
   const PetscInt dim = g.dim, nvf = g.num_velocity_fields, vdof = nvf * 2 * dim, stride = g.NodeStride(), dof = nvf * stride;
-  const PetscInt m = sim.xpic_order;
+  const PetscInt m = mpm.xpic_order;
   PetscFunctionBeginUser;
   if (!g.xpic_star) {
     PetscCall(DMCreateLocalVector(g.da_velocity, &g.xpic_star));
@@ -296,8 +296,8 @@ static PetscErrorCode XPICExtrapolate(Simulation &sim)
     PetscCall(VecZeroEntries(g.xpic_sum));
     PetscCall(VecGetArrayRead(g.xpic_w, &w));
     PetscCall(VecGetArray(g.xpic_sum, &sum));
-    XPICKernel kernel{sim, w, sum};
-    PetscCall(DispatchShape(dim, sim.shape, kernel));
+    XPICKernel kernel{mpm, w, sum};
+    PetscCall(DispatchShape(dim, mpm.shape, kernel));
     PetscCall(VecRestoreArray(g.xpic_sum, &sum));
     PetscCall(VecRestoreArrayRead(g.xpic_w, &w));
     PetscCall(VecZeroEntries(g.xpic_global));
@@ -307,12 +307,12 @@ static PetscErrorCode XPICExtrapolate(Simulation &sim)
     PetscCall(VecGetLocalSize(g.xpic_global, &nlocal));
     PetscCall(VecGetArray(g.xpic_global, &glob));
     PetscCall(VecGetArrayRead(g.nodal, &nodal));
-    const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
+    const PetscInt rigid = mpm.rigid_material >= 0 ? nvf - 1 : -1;
     for (PetscInt node = 0; node < nlocal / vdof; ++node)
       for (PetscInt vf = 0; vf < nvf; ++vf) {
         const PetscReal mass = nodal[node * dof + vf * stride];
         PetscScalar    *v    = glob + node * vdof + vf * 2 * dim;
-        for (PetscInt a = 0; a < dim; ++a) v[a] = vf == rigid ? sim.rigid_velocity[a] : (mass > sim.mass_cutoff ? v[a] / mass : 0);
+        for (PetscInt a = 0; a < dim; ++a) v[a] = vf == rigid ? mpm.rigid_velocity[a] : (mass > mpm.mass_cutoff ? v[a] / mass : 0);
       }
     PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
     PetscCall(VecRestoreArray(g.xpic_global, &glob));
@@ -322,24 +322,24 @@ static PetscErrorCode XPICExtrapolate(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode GridToParticles(Simulation &sim, G2PRequest what)
+PetscErrorCode GridToParticles(MpmSolver &mpm, G2PRequest what)
 {
   const PetscScalar *vel, *star = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_g2p, 0, 0, 0, 0));
-  const bool xpic = what.velocity && sim.transfer == Transfer::XPIC;
+  PetscCall(PetscLogEventBegin(mpm.ev_g2p, 0, 0, 0, 0));
+  const bool xpic = what.velocity && mpm.transfer == Transfer::XPIC;
   if (xpic) {
-    PetscCall(PetscLogEventBegin(sim.ev_xpic, 0, 0, 0, 0));
-    PetscCall(XPICExtrapolate(sim));
-    PetscCall(PetscLogEventEnd(sim.ev_xpic, 0, 0, 0, 0));
-    PetscCall(VecGetArrayRead(sim.grid.xpic_star, &star));
+    PetscCall(PetscLogEventBegin(mpm.ev_xpic, 0, 0, 0, 0));
+    PetscCall(XPICExtrapolate(mpm));
+    PetscCall(PetscLogEventEnd(mpm.ev_xpic, 0, 0, 0, 0));
+    PetscCall(VecGetArrayRead(mpm.grid.xpic_star, &star));
   }
-  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
-  G2PKernel kernel{sim, what, vel, star};
-  PetscCall(DispatchShape(sim.grid.dim, sim.shape, kernel));
-  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
-  if (xpic) PetscCall(VecRestoreArrayRead(sim.grid.xpic_star, &star));
-  PetscCall(PetscLogEventEnd(sim.ev_g2p, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(mpm.grid.velocity_local, &vel));
+  G2PKernel kernel{mpm, what, vel, star};
+  PetscCall(DispatchShape(mpm.grid.dim, mpm.shape, kernel));
+  PetscCall(VecRestoreArrayRead(mpm.grid.velocity_local, &vel));
+  if (xpic) PetscCall(VecRestoreArrayRead(mpm.grid.xpic_star, &star));
+  PetscCall(PetscLogEventEnd(mpm.ev_g2p, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,7 +1,7 @@
 // Geometry objects that seed particles: box, disk (2-D) / cylinder (3-D, axis z), annulus (2-D ring,
 // 3-D tube along z; full or a sector), sphere.
 #pragma once
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 
 namespace burst {
 

@@ -5,7 +5,7 @@
 // a support node beyond a wall onto the inside nodes (shape.hpp), so no node outside the domain is
 // addressed, and a rank without neighbours has no ghost nodes (its local vectors are its global
 // ones). BOX stencils everywhere: STAR drops corner ghosts in DMLocalToGlobal(ADD_VALUES) (petsc.md 4.4).
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "memory.hpp"
 #include "util.hpp"
 #include "mpm/swarm_access.hpp"
@@ -58,29 +58,29 @@ static PetscErrorCode CreateGhostScatter(const Grid &g, DM da, Vec local_vec, Ve
 
 // The node DMDA, its velocity twin, the vectors and the ownership tables; with ranges (one vector of
 // node counts per direction), on the same process grid with those ownership ranges.
-static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt> *ranges)
+static PetscErrorCode CreateNodeDMDA(MpmSolver &mpm, const std::vector<PetscInt> *ranges)
 {
-  Grid &g = sim.grid;
+  Grid &g = mpm.grid;
   PetscFunctionBeginUser;
   g.reached.clear(); // the marks of another layout (p2g.cxx): the new vectors are zeroed whole first
   g.reached_step = -1;
   g.velocity_written.clear(); // (grid_update.cxx: the first update writes every node)
-  const PetscInt width = ShapeGhostWidth(sim.shape);
+  const PetscInt width = ShapeGhostWidth(mpm.shape);
   // No ghost nodes outside the domain: every support stays inside [0, M-1] (shape.hpp moves the
   // weight of a node beyond a wall onto the inside nodes), so on one rank the local vectors are the
   // global ones and P2G sums straight into them.
   const DMBoundaryType bt = DM_BOUNDARY_NONE;
   const PetscInt procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
   const PetscInt *l[3] = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
-  if (!ranges && !sim.materials.empty()) { // (without solids the node vectors are not allocated: the gas has its own)
+  if (!ranges && !mpm.materials.empty()) { // (without solids the node vectors are not allocated: the gas has its own)
     const PetscReal nodes = (PetscReal)(g.cells[0] + 1) * (g.cells[1] + 1) * (g.dim == 3 ? g.cells[2] + 1 : 1);
-    const PetscReal bytes = nodes / sim.size * g.num_velocity_fields * (g.dim == 3 ? kMemoryNodeBytes3d : kMemoryNodeBytes2d);
-    PetscCall(MemoryCheck(sim.comm, "The background grid (-grid_cells)", bytes, "use fewer cells (-grid_cells, -grid_cell_size) or more ranks"));
+    const PetscReal bytes = nodes / mpm.size * g.num_velocity_fields * (g.dim == 3 ? kMemoryNodeBytes3d : kMemoryNodeBytes2d);
+    PetscCall(MemoryCheck(mpm.comm, "The background grid (-grid_cells)", bytes, "use fewer cells (-grid_cells, -grid_cell_size) or more ranks"));
   }
   if (g.dim == 2) {
-    PetscCall(DMDACreate2d(sim.comm, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, procs0[0], procs0[1], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], &g.da_nodes));
+    PetscCall(DMDACreate2d(mpm.comm, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, procs0[0], procs0[1], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], &g.da_nodes));
   } else {
-    PetscCall(DMDACreate3d(sim.comm, bt, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, g.cells[2] + 1, procs0[0], procs0[1], procs0[2], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], l[2], &g.da_nodes));
+    PetscCall(DMDACreate3d(mpm.comm, bt, bt, bt, DMDA_STENCIL_BOX, g.cells[0] + 1, g.cells[1] + 1, g.cells[2] + 1, procs0[0], procs0[1], procs0[2], g.num_velocity_fields * g.NodeStride(), width, l[0], l[1], l[2], &g.da_nodes));
   }
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)g.da_nodes, "grid_"));
   if (!ranges) PetscCall(DMSetFromOptions(g.da_nodes)); // (a re-balance keeps the process grid and sets the ranges)
@@ -92,7 +92,7 @@ static PetscErrorCode CreateNodeDMDA(Simulation &sim, const std::vector<PetscInt
   PetscInt        m, n, p;
   PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscCall(DMDAGetOwnershipRanges(g.da_nodes, &l[0], &l[1], &l[2]));
-  if (ranges) PetscCheck(m == g.procs[0] && n == g.procs[1] && (g.dim == 2 || p == g.procs[2]), sim.comm, PETSC_ERR_PLIB, "The re-balanced grid changed the process grid");
+  if (ranges) PetscCheck(m == g.procs[0] && n == g.procs[1] && (g.dim == 2 || p == g.procs[2]), mpm.comm, PETSC_ERR_PLIB, "The re-balanced grid changed the process grid");
   const PetscInt procs[3] = {m, n, g.dim == 3 ? p : 1};
   for (PetscInt d = 0; d < 3; ++d) {
     g.procs[d] = (PetscMPIInt)procs[d];
@@ -145,29 +145,29 @@ PetscErrorCode GridVelocityGhosts(Grid &g)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CreateGrid(Simulation &sim)
+PetscErrorCode CreateGrid(MpmSolver &mpm)
 {
-  Grid     &g = sim.grid;
+  Grid     &g = mpm.grid;
   PetscBool set_cells = PETSC_FALSE, set_h = PETSC_FALSE;
   PetscReal cell_size[3] = {0, 0, 0};
   PetscInt  cells[3] = {g.cells[0], g.cells[1], g.cells[2]};
   int       bc[3][2];
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Background grid", "Grid");
+  PetscOptionsBegin(mpm.comm, "", "Background grid", "Grid");
   PetscCall(PetscOptionsInt("-dim", "Spatial dimension: 2 (plane strain) or 3", "", g.dim, &g.dim, nullptr));
-  PetscCheck(g.dim == 2 || g.dim == 3, sim.comm, PETSC_ERR_USER_INPUT, "Option -dim = %" PetscInt_FMT " is not supported: valid choices are 2 and 3", g.dim);
+  PetscCheck(g.dim == 2 || g.dim == 3, mpm.comm, PETSC_ERR_USER_INPUT, "Option -dim = %" PetscInt_FMT " is not supported: valid choices are 2 and 3", g.dim);
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_lower", "Lower corner of the domain (m), one value per dimension", g.lower, g.dim, nullptr));
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_upper", "Upper corner of the domain (m), one value per dimension", g.upper, g.dim, nullptr));
   {
     PetscInt n = 3;
     PetscCall(PetscOptionsIntArray("-grid_cells", "Number of cells per direction (one value per dimension, each >= 1)", "", cells, &n, &set_cells));
-    PetscCheck(!set_cells || n == g.dim, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells needs %" PetscInt_FMT " values, got %" PetscInt_FMT, g.dim, n);
+    PetscCheck(!set_cells || n == g.dim, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells needs %" PetscInt_FMT " values, got %" PetscInt_FMT, g.dim, n);
     if (set_cells) { // PETSc's integer parsing wraps a count beyond the index type: read the values again as reals
       PetscReal as_real[3] = {0, 0, 0};
       PetscInt  nr         = 3;
       PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, "-grid_cells", as_real, &nr, nullptr));
       for (PetscInt d = 0; d < PetscMin(n, nr); ++d)
-        PetscCheck(as_real[d] == (PetscReal)cells[d], sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: %g cells in direction %" PetscInt_FMT " is not a count this build can index (whole numbers from 1 to %g)", (double)as_real[d], d, (double)(PETSC_MAX_INT / 4));
+        PetscCheck(as_real[d] == (PetscReal)cells[d], mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: %g cells in direction %" PetscInt_FMT " is not a count this build can index (whole numbers from 1 to %g)", (double)as_real[d], d, (double)(PETSC_MAX_INT / 4));
     }
   }
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_cell_size", "Cell size per direction (m), rounded to fit the box; overrides -grid_cells (which the scene files set)", cell_size, g.dim, &set_h));
@@ -185,23 +185,23 @@ PetscErrorCode CreateGrid(Simulation &sim)
   PetscCall(PetscOptionsReal("-grid_balance_gas_weight", "With -grid_balance and gases (-ice_materials): work of a gas cell's step relative to a particle's (-), >= 0; the gas grid takes the balanced ranges", "", g.balance_gas_weight, &g.balance_gas_weight, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_plastic_weight", "With -grid_balance: work of a particle that yielded in the last step relative to an elastic one (-), >= 1 (its return mapping); with -grid_balance_interval the ranges follow the plastic zone", "", g.balance_plastic_weight, &g.balance_plastic_weight, nullptr));
   PetscOptionsEnd();
-  PetscCheck(g.balance_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
-  PetscCall(CheckRange(sim.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
-  PetscCall(CheckRange(sim.comm, "-grid_balance_node_weight", g.balance_node_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  PetscCall(CheckRange(sim.comm, "-grid_balance_plastic_weight", g.balance_plastic_weight, 1, PETSC_MAX_REAL, PETSC_FALSE));
-  PetscCall(CheckRange(sim.comm, "-grid_balance_gas_weight", g.balance_gas_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  if (!sim.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &sim.ev_balance));
+  PetscCheck(g.balance_interval >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
+  PetscCall(CheckRange(mpm.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
+  PetscCall(CheckRange(mpm.comm, "-grid_balance_node_weight", g.balance_node_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(CheckRange(mpm.comm, "-grid_balance_plastic_weight", g.balance_plastic_weight, 1, PETSC_MAX_REAL, PETSC_FALSE));
+  PetscCall(CheckRange(mpm.comm, "-grid_balance_gas_weight", g.balance_gas_weight, 0, PETSC_MAX_REAL, PETSC_FALSE));
+  if (!mpm.ev_balance) PetscCall(PetscLogEventRegister("MPM_Balance", DM_CLASSID, &mpm.ev_balance));
 
-  if (set_h && set_cells) PetscCall(PetscPrintf(sim.comm, "Note: -grid_cell_size overrides -grid_cells\n"));
+  if (set_h && set_cells) PetscCall(PetscPrintf(mpm.comm, "Note: -grid_cell_size overrides -grid_cells\n"));
   for (PetscInt d = 0; d < g.dim; ++d) {
-    PetscCheck(g.upper[d] > g.lower[d], sim.comm, PETSC_ERR_USER_INPUT, "Options -grid_lower/-grid_upper: upper corner must exceed lower corner in direction %" PetscInt_FMT " (got %g, %g)", d, (double)g.lower[d], (double)g.upper[d]);
+    PetscCheck(g.upper[d] > g.lower[d], mpm.comm, PETSC_ERR_USER_INPUT, "Options -grid_lower/-grid_upper: upper corner must exceed lower corner in direction %" PetscInt_FMT " (got %g, %g)", d, (double)g.lower[d], (double)g.upper[d]);
     if (set_h) {
-      PetscCheck(cell_size[d] > 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g is out of range: it must be > 0", (double)cell_size[d]);
+      PetscCheck(cell_size[d] > 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g is out of range: it must be > 0", (double)cell_size[d]);
       const PetscReal count = std::round((g.upper[d] - g.lower[d]) / cell_size[d]);
-      PetscCheck(count <= (PetscReal)PETSC_MAX_INT / 4, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g gives %g cells in direction %" PetscInt_FMT "; at most %g fit a PetscInt index", (double)cell_size[d], (double)count, d, (double)(PETSC_MAX_INT / 4));
+      PetscCheck(count <= (PetscReal)PETSC_MAX_INT / 4, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g gives %g cells in direction %" PetscInt_FMT "; at most %g fit a PetscInt index", (double)cell_size[d], (double)count, d, (double)(PETSC_MAX_INT / 4));
       cells[d] = (PetscInt)PetscMax(1, (PetscInt)count);
     }
-    PetscCheck(cells[d] >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: the cell count in direction %" PetscInt_FMT " is %" PetscInt_FMT "; it must be >= 1", d, cells[d]);
+    PetscCheck(cells[d] >= 1, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: the cell count in direction %" PetscInt_FMT " is %" PetscInt_FMT "; it must be >= 1", d, cells[d]);
     g.cells[d]        = cells[d];
     g.h[d]            = (g.upper[d] - g.lower[d]) / cells[d];
     g.axes[d].origin  = g.lower[d];
@@ -215,9 +215,9 @@ PetscErrorCode CreateGrid(Simulation &sim)
     g.upper[2] = 1;
   }
 
-  sim.mass_cutoff = sim.mass_cutoff_fraction * sim.densest * g.CellVolume();
-  PetscCall(CreateNodeDMDA(sim, nullptr));
-  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2], (double)g.h[0], (double)g.h[1], (double)g.h[2], ShapeGhostWidth(sim.shape), g.procs[0], g.procs[1], g.procs[2]));
+  mpm.mass_cutoff = mpm.mass_cutoff_fraction * mpm.densest * g.CellVolume();
+  PetscCall(CreateNodeDMDA(mpm, nullptr));
+  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2], (double)g.h[0], (double)g.h[1], (double)g.h[2], ShapeGhostWidth(mpm.shape), g.procs[0], g.procs[1], g.procs[2]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -231,34 +231,34 @@ PetscErrorCode CreateGrid(Simulation &sim)
 // the caller recomputes the owner ranks and migrates when the ranges changed. The grid vectors are
 // created anew (their values are rebuilt by the next step's P2G). Not with gas or heat conduction,
 // whose grids copy the node DMDA's ranges at set-up.
-PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
+PetscErrorCode BalanceGrid(MpmSolver &mpm, PetscBool *changed)
 {
-  Grid &g = sim.grid;
+  Grid &g = mpm.grid;
   PetscFunctionBeginUser;
   *changed = PETSC_FALSE;
-  if (sim.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
-  sim.stencil_cache.Invalidate(); // new ghost ranges
+  if (mpm.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
+  mpm.stencil_cache.Invalidate(); // new ghost ranges
   // the gas grid is created after this start-up balance and copies its ranges; conduction's before it
-  PetscCheck(!sim.ice && !sim.heat, sim.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with -mpm_heat_conduction, nor with -grid_balance_interval > 0 and gases (-ice_materials): their grids keep the node ranges they were created with");
-  PetscCall(PetscLogEventBegin(sim.ev_balance, 0, 0, 0, 0));
+  PetscCheck(!mpm.grid.ranges_copied && !mpm.heat, mpm.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with -mpm_heat_conduction, nor with -grid_balance_interval > 0 and gases (-ice_materials): their grids keep the node ranges they were created with");
+  PetscCall(PetscLogEventBegin(mpm.ev_balance, 0, 0, 0, 0));
   const PetscInt        dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};
   const PetscInt        offset[3] = {0, nc[0], nc[0] + nc[1]};
   std::vector<PetscReal> work(nc[0] + nc[1] + nc[2], 0), total(work.size(), 0);
   {
-    std::vector<PetscReal> weight(sim.materials.size());
-    for (size_t m = 0; m < sim.materials.size(); ++m) {
+    std::vector<PetscReal> weight(mpm.materials.size());
+    for (size_t m = 0; m < mpm.materials.size(); ++m) {
       PetscReal v[3];
-      weight[m] = sim.materials[m]->IsRigid(v) ? g.balance_rigid_weight : 1.0;
+      weight[m] = mpm.materials[m]->IsRigid(v) ? g.balance_rigid_weight : 1.0;
     }
     // the plastic rate of the metal models (models/plasticity), when a material carries it
     bool plastic_field = false;
-    for (const auto &m : sim.materials)
+    for (const auto &m : mpm.materials)
       for (const OutputField &of : m->OutputFields()) plastic_field = plastic_field || std::string(of.name) == state_field::plastic_strain_rate;
     PetscInt         n;
     const PetscInt  *cell, *material;
     const PetscReal *rate = nullptr;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
     PetscCall(fields.Get(field::material, &material));
     if (plastic_field && g.balance_plastic_weight != 1) PetscCall(fields.Get(state_field::plastic_strain_rate, &rate));
@@ -270,8 +270,8 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     }
     PetscCall(fields.RestoreAll());
   }
-  PetscCallMPI(MPI_Allreduce(work.data(), total.data(), (PetscMPIInt)work.size(), MPIU_REAL, MPI_SUM, sim.comm));
-  const PetscInt        min_nodes = ShapeGhostWidth(sim.shape) + 1;
+  PetscCallMPI(MPI_Allreduce(work.data(), total.data(), (PetscMPIInt)work.size(), MPIU_REAL, MPI_SUM, mpm.comm));
+  const PetscInt        min_nodes = ShapeGhostWidth(mpm.shape) + 1;
   std::vector<PetscInt> ranges[3];
   bool                  same = true;
   for (PetscInt d = 0; d < 3; ++d) {
@@ -314,12 +314,12 @@ PetscErrorCode BalanceGrid(Simulation &sim, PetscBool *changed)
     PetscCall(VecDestroy(&g.velocity_local));
     PetscCall(DMDestroy(&g.da_velocity));
     PetscCall(DMDestroy(&g.da_nodes));
-    PetscCall(CreateNodeDMDA(sim, ranges));
+    PetscCall(CreateNodeDMDA(mpm, ranges));
     *changed = PETSC_TRUE;
-    if (g.balanced_at < 0 || g.balance_interval == 0) PetscCall(PetscPrintf(sim.comm, "  grid balanced from the particle work: node ranges x %s, y %s, z %s\n", RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
-    else PetscCall(PetscInfo(g.da_nodes, "Step %" PetscInt_FMT ": balanced node ranges x %s, y %s, z %s\n", sim.step, RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
+    if (g.balanced_at < 0 || g.balance_interval == 0) PetscCall(PetscPrintf(mpm.comm, "  grid balanced from the particle work: node ranges x %s, y %s, z %s\n", RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
+    else PetscCall(PetscInfo(g.da_nodes, "Step %" PetscInt_FMT ": balanced node ranges x %s, y %s, z %s\n", mpm.step, RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
   }
-  PetscCall(PetscLogEventEnd(sim.ev_balance, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(mpm.ev_balance, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,6 +1,6 @@
 // Flat index of a node in the ghosted local arrays of the node DMDAs (petsc.md 5.2).
 #pragma once
-#include "../simulation.hpp"
+#include "mpm.hpp"
 #include "shape.hpp"
 #include <cstdint>
 #include <cstring>

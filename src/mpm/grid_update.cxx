@@ -27,7 +27,7 @@ static inline void ApplyBoundaryConditions(const Grid &g, const PetscInt node[],
 // the fields approach along the common normal n (from field 0 towards field 1, from the difference
 // of the nodal mass gradients, which point out of each body), removes the approaching normal velocity and limits the tangential slip by Coulomb
 // friction mu |dv.n|. Momentum is conserved: the two corrections are equal and opposite.
-static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal m[2], const PetscReal grad0[], const PetscReal grad1[], PetscReal v0[], PetscReal v1[])
+static inline void Contact(const MpmSolver &mpm, PetscInt dim, const PetscReal m[2], const PetscReal grad0[], const PetscReal grad1[], PetscReal v0[], PetscReal v1[])
 {
   PetscReal vcm[3], n[3] = {0, 0, 0}, norm = 0;
   for (PetscInt a = 0; a < dim; ++a) {
@@ -36,7 +36,7 @@ static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal 
     norm += n[a] * n[a];
   }
   norm = std::sqrt(norm);
-  if (sim.contact == ContactType::NoSlip || norm == 0) {
+  if (mpm.contact == ContactType::NoSlip || norm == 0) {
     for (PetscInt a = 0; a < dim; ++a) v0[a] = v1[a] = vcm[a];
     return;
   }
@@ -55,10 +55,10 @@ static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal 
       tnorm += dt[a] * dt[a];
     }
     tnorm = std::sqrt(tnorm);
-    if (sim.friction * dn >= tnorm) {
+    if (mpm.friction * dn >= tnorm) {
       for (PetscInt a = 0; a < dim; ++a) v[f][a] = vcm[a]; // stick
     } else {
-      for (PetscInt a = 0; a < dim; ++a) v[f][a] -= dn * sign * n[a] + (tnorm > 0 ? sim.friction * dn * dt[a] / tnorm : 0);
+      for (PetscInt a = 0; a < dim; ++a) v[f][a] -= dn * sign * n[a] + (tnorm > 0 ? mpm.friction * dn * dt[a] / tnorm : 0);
     }
   }
 }
@@ -67,7 +67,7 @@ static inline void Contact(const Simulation &sim, PetscInt dim, const PetscReal 
 // the field moves into the body along its outward normal n (the rigid field's nodal mass gradient,
 // which points out of it), the normal part of the relative velocity is removed and the tangential
 // slip is limited by Coulomb friction; no_slip gives the field the rigid velocity.
-static inline void RigidContact(const Simulation &sim, PetscInt dim, const PetscReal grad_rigid[], const PetscReal v_r[], PetscReal v[])
+static inline void RigidContact(const MpmSolver &mpm, PetscInt dim, const PetscReal grad_rigid[], const PetscReal v_r[], PetscReal v[])
 {
   PetscReal n[3] = {0, 0, 0}, norm = 0, dv[3], dn = 0;
   for (PetscInt a = 0; a < dim; ++a) {
@@ -75,7 +75,7 @@ static inline void RigidContact(const Simulation &sim, PetscInt dim, const Petsc
     norm += n[a] * n[a];
   }
   norm = std::sqrt(norm);
-  if (sim.contact == ContactType::NoSlip || norm == 0) {
+  if (mpm.contact == ContactType::NoSlip || norm == 0) {
     for (PetscInt a = 0; a < dim; ++a) v[a] = v_r[a];
     return;
   }
@@ -91,23 +91,23 @@ static inline void RigidContact(const Simulation &sim, PetscInt dim, const Petsc
     tnorm += dt[a] * dt[a];
   }
   tnorm = std::sqrt(tnorm);
-  if (sim.friction * -dn >= tnorm) {
+  if (mpm.friction * -dn >= tnorm) {
     for (PetscInt a = 0; a < dim; ++a) v[a] = v_r[a];
   } else {
-    for (PetscInt a = 0; a < dim; ++a) v[a] -= dn * n[a] + (tnorm > 0 ? sim.friction * -dn * dt[a] / tnorm : 0);
+    for (PetscInt a = 0; a < dim; ++a) v[a] -= dn * n[a] + (tnorm > 0 ? mpm.friction * -dn * dt[a] / tnorm : 0);
   }
 }
 
-static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
+static PetscErrorCode UpdateNodes(MpmSolver &mpm, bool integrate)
 {
-  Grid          &g   = sim.grid;
+  Grid          &g   = mpm.grid;
   const PetscInt dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
   const PetscInt stride = g.NodeStride(), nvf = g.num_velocity_fields;
   PetscInt       xs[3], xm[3];
   const PetscScalar *nodal;
   PetscScalar       *vel;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_grid, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(mpm.ev_grid, 0, 0, 0, 0));
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArrayRead(g.nodal, &nodal));
   PetscCall(VecGetArray(g.velocity, &vel));
@@ -117,7 +117,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   PetscScalar *vel_local = nullptr;
   if (g.velocity_local != g.velocity) PetscCall(VecGetArray(g.velocity_local, &vel_local));
   // the nodes no particle reaches this step (p2g.cxx) are empty without a look at their sums
-  const unsigned char *reached = g.reached_step == sim.step && !g.reached.empty() ? g.reached.data() : nullptr;
+  const unsigned char *reached = g.reached_step == mpm.step && !g.reached.empty() ? g.reached.data() : nullptr;
   const LocalNodeIndex index(g);
   const PetscInt       owned = xm[0] * xm[1] * xm[2];
   if ((PetscInt)g.velocity_written.size() != owned) g.velocity_written.assign(owned, 1); // (a new layout: write every node once)
@@ -129,7 +129,7 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
     { // an empty node (every field under the mass cut-off) has zero velocities: skip the rest
       bool empty = true;
       if (!reached || reached[index(i, j, k)])
-        for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > sim.mass_cutoff);
+        for (PetscInt vf = 0; vf < nvf; ++vf) empty = empty && !(nodal[l * dof + vf * stride] > mpm.mass_cutoff);
       if (empty) {
         if (written[l]) { // (else both vectors hold zeros here already)
           for (PetscInt a = 0; a < vdof; ++a) vout[a] = 0;
@@ -146,10 +146,10 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
     for (PetscInt vf = 0; vf < nvf; ++vf) {
       const PetscScalar *nd = nodal + l * dof + vf * stride;
       mass[vf]              = nd[0];
-      if (mass[vf] > sim.mass_cutoff) {
+      if (mass[vf] > mpm.mass_cutoff) {
         for (PetscInt a = 0; a < dim; ++a) {
           v_old[vf][a] = nd[1 + a] / mass[vf];
-          v_new[vf][a] = integrate ? v_old[vf][a] + sim.dt * nd[1 + dim + a] / mass[vf] : v_old[vf][a];
+          v_new[vf][a] = integrate ? v_old[vf][a] + mpm.dt * nd[1 + dim + a] / mass[vf] : v_old[vf][a];
         }
       }
     }
@@ -162,20 +162,20 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
           const bool mirrored = (node[a] == 0 && g.bc[a][0] == FaceBC::Symmetry) || (node[a] == g.cells[a] && g.bc[a][1] == FaceBC::Symmetry);
           grads[vf][a]        = mirrored ? 0 : nodal[l * dof + vf * stride + 1 + 2 * dim + a];
         }
-    const PetscInt rigid = sim.rigid_material >= 0 ? nvf - 1 : -1;
-    if (rigid >= 0 && mass[rigid] > sim.mass_cutoff) {
+    const PetscInt rigid = mpm.rigid_material >= 0 ? nvf - 1 : -1;
+    if (rigid >= 0 && mass[rigid] > mpm.mass_cutoff) {
       const PetscReal *gr = grads[rigid];
-      for (PetscInt a = 0; a < dim; ++a) v_old[rigid][a] = v_new[rigid][a] = sim.rigid_velocity[a];
+      for (PetscInt a = 0; a < dim; ++a) v_old[rigid][a] = v_new[rigid][a] = mpm.rigid_velocity[a];
       for (PetscInt vf = 0; vf < rigid; ++vf)
-        if (mass[vf] > sim.mass_cutoff) {
-          RigidContact(sim, dim, gr, sim.rigid_velocity, v_old[vf]);
-          RigidContact(sim, dim, gr, sim.rigid_velocity, v_new[vf]);
+        if (mass[vf] > mpm.mass_cutoff) {
+          RigidContact(mpm, dim, gr, mpm.rigid_velocity, v_old[vf]);
+          RigidContact(mpm, dim, gr, mpm.rigid_velocity, v_new[vf]);
         }
     }
-    if (sim.TwoDeformableFields() && mass[0] > sim.mass_cutoff && mass[1] > sim.mass_cutoff) {
+    if (mpm.TwoDeformableFields() && mass[0] > mpm.mass_cutoff && mass[1] > mpm.mass_cutoff) {
       const PetscReal *g0 = grads[0], *g1 = grads[1];
-      Contact(sim, dim, mass, g0, g1, v_old[0], v_old[1]);
-      Contact(sim, dim, mass, g0, g1, v_new[0], v_new[1]);
+      Contact(mpm, dim, mass, g0, g1, v_old[0], v_old[1]);
+      Contact(mpm, dim, mass, g0, g1, v_new[0], v_new[1]);
     }
     for (PetscInt vf = 0; vf < nvf; ++vf) {
       if (vf != rigid) { // the rigid velocity is prescribed
@@ -200,16 +200,16 @@ static PetscErrorCode UpdateNodes(Simulation &sim, bool integrate)
   ForEachMarkedRun(g, reached, xs, xm, [&](PetscInt l, PetscInt, PetscInt count, PetscInt i, PetscInt j, PetscInt k) {
     for (PetscInt n = 0; n < count; ++n) update(i + n, j, k, l + n);
   }, written);
-  for (PetscInt a = 0; a < dim; ++a) sim.diag.bc_impulse[a] += bc_impulse[a];
+  for (PetscInt a = 0; a < dim; ++a) mpm.diag.bc_impulse[a] += bc_impulse[a];
   if (vel_local) PetscCall(VecRestoreArray(g.velocity_local, &vel_local));
   PetscCall(VecRestoreArray(g.velocity, &vel));
   PetscCall(VecRestoreArrayRead(g.nodal, &nodal));
   PetscCall(GridVelocityGhosts(g));
-  PetscCall(PetscLogEventEnd(sim.ev_grid, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(mpm.ev_grid, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode GridUpdate(Simulation &sim) { return UpdateNodes(sim, true); }
-PetscErrorCode GridVelocityFromMomentum(Simulation &sim) { return UpdateNodes(sim, false); }
+PetscErrorCode GridUpdate(MpmSolver &mpm) { return UpdateNodes(mpm, true); }
+PetscErrorCode GridVelocityFromMomentum(MpmSolver &mpm) { return UpdateNodes(mpm, false); }
 
 } // namespace burst

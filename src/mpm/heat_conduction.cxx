@@ -93,13 +93,13 @@ struct HeatConduction {
   }
 };
 
-PetscErrorCode HeatConductionSetUp(Simulation &sim)
+PetscErrorCode HeatConductionSetUp(MpmSolver &mpm)
 {
   PetscBool on = PETSC_FALSE;
   auto      heat = std::unique_ptr<HeatConduction, HeatDeleter>(new HeatConduction());
   const char *face_opt[3][2] = {{"-mpm_heat_bc_xmin", "-mpm_heat_bc_xmax"}, {"-mpm_heat_bc_ymin", "-mpm_heat_bc_ymax"}, {"-mpm_heat_bc_zmin", "-mpm_heat_bc_zmax"}};
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Heat conduction in the solids", "Heat");
+  PetscOptionsBegin(mpm.comm, "", "Heat conduction in the solids", "Heat");
   PetscCall(PetscOptionsBool("-mpm_heat_conduction", "Conduct heat between particles (explicit grid step at the end of each step, needs -<mat>_thermal_conductivity and -<mat>_heat_capacity); false: adiabatic", "", on, &on, nullptr));
   PetscCall(PetscOptionsReal("-mpm_heat_cfl", "Conduction sub-step as a fraction of the explicit limit 1/(2 alpha sum 1/h^2), in (0, 1]", "", heat->cfl, &heat->cfl, nullptr));
   {
@@ -108,50 +108,50 @@ PetscErrorCode HeatConductionSetUp(Simulation &sim)
     heat->interface = (HeatInterface)choice;
   }
   PetscCall(PetscOptionsInt("-mpm_heat_max_substeps", "Most conduction sub-steps in one time step, >= 1: a step that needs more (a high -<mat>_thermal_conductivity, a fine grid, a long -mpm_dt) stops the run with the count it would need", "", heat->max_substeps, &heat->max_substeps, nullptr));
-  for (PetscInt d = 0; d < sim.grid.dim; ++d)
+  for (PetscInt d = 0; d < mpm.grid.dim; ++d)
     for (int s = 0; s < 2; ++s) PetscCall(PetscOptionsReal(face_opt[d][s], "Fixed temperature (K) held on this domain face by the conduction step; unset: insulated (zero flux)", "", heat->face_T[d][s], &heat->face_T[d][s], &heat->fixed[d][s]));
   PetscOptionsEnd();
-  if (!on && !sim.help) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(CheckRange(sim.comm, "-mpm_heat_cfl", heat->cfl, 0, 1, PETSC_TRUE));
-  PetscCheck(heat->max_substeps >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_heat_max_substeps = %" PetscInt_FMT " is out of range: it must be >= 1", heat->max_substeps);
-  for (PetscInt d = 0; d < sim.grid.dim; ++d)
+  if (!on && !mpm.help) PetscFunctionReturn(PETSC_SUCCESS);
+  PetscCall(CheckRange(mpm.comm, "-mpm_heat_cfl", heat->cfl, 0, 1, PETSC_TRUE));
+  PetscCheck(heat->max_substeps >= 1, mpm.comm, PETSC_ERR_USER_INPUT, "Option -mpm_heat_max_substeps = %" PetscInt_FMT " is out of range: it must be >= 1", heat->max_substeps);
+  for (PetscInt d = 0; d < mpm.grid.dim; ++d)
     for (int s = 0; s < 2; ++s)
-      if (heat->fixed[d][s]) PetscCall(CheckRange(sim.comm, face_opt[d][s], heat->face_T[d][s], 0, PETSC_MAX_REAL, PETSC_TRUE));
+      if (heat->fixed[d][s]) PetscCall(CheckRange(mpm.comm, face_opt[d][s], heat->face_T[d][s], 0, PETSC_MAX_REAL, PETSC_TRUE));
 
   // Material parameters, one options block per material.
-  const PetscInt nmat = (PetscInt)sim.materials.size();
+  const PetscInt nmat = (PetscInt)mpm.materials.size();
   heat->k.assign(nmat, -1);
   heat->c.assign(nmat, -1);
   for (PetscInt m = 0; m < nmat; ++m) {
-    Material   &mat = *sim.materials[m];
+    Material   &mat = *mpm.materials[m];
     PetscReal   v[3];
     const bool  rigid = mat.IsRigid(v);
     const std::string pre = mat.name_ + "_";
     PetscBool   has_k = PETSC_FALSE, has_c = PETSC_FALSE;
     PetscReal   k = -1, c = -1;
-    PetscOptionsBegin(sim.comm, pre.c_str(), "Heat conduction: material parameters", "Heat");
+    PetscOptionsBegin(mpm.comm, pre.c_str(), "Heat conduction: material parameters", "Heat");
     PetscCall(PetscOptionsReal("-thermal_conductivity", "Thermal conductivity k (W/(m K)), >= 0; read with -mpm_heat_conduction", "", k, &k, &has_k));
     PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat c_p (J/(kg K)), > 0, constant, of the conduction step only (a model's own specific heat model, if any, is separate)", "", c, &c, &has_c));
     PetscOptionsEnd();
-    if (sim.help || rigid) continue;
-    PetscCheck(has_k, sim.comm, PETSC_ERR_USER_INPUT, "-mpm_heat_conduction needs -%sthermal_conductivity (W/(m K), >= 0) for material %s", pre.c_str(), mat.Name());
-    PetscCheck(has_c, sim.comm, PETSC_ERR_USER_INPUT, "-mpm_heat_conduction needs -%sheat_capacity (J/(kg K), > 0) for material %s", pre.c_str(), mat.Name());
-    PetscCall(CheckRange(sim.comm, Prefixed(pre.c_str(), "thermal_conductivity").c_str(), k, 0, PETSC_MAX_REAL, PETSC_FALSE));
-    PetscCall(CheckRange(sim.comm, Prefixed(pre.c_str(), "heat_capacity").c_str(), c, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    if (mpm.help || rigid) continue;
+    PetscCheck(has_k, mpm.comm, PETSC_ERR_USER_INPUT, "-mpm_heat_conduction needs -%sthermal_conductivity (W/(m K), >= 0) for material %s", pre.c_str(), mat.Name());
+    PetscCheck(has_c, mpm.comm, PETSC_ERR_USER_INPUT, "-mpm_heat_conduction needs -%sheat_capacity (J/(kg K), > 0) for material %s", pre.c_str(), mat.Name());
+    PetscCall(CheckRange(mpm.comm, Prefixed(pre.c_str(), "thermal_conductivity").c_str(), k, 0, PETSC_MAX_REAL, PETSC_FALSE));
+    PetscCall(CheckRange(mpm.comm, Prefixed(pre.c_str(), "heat_capacity").c_str(), c, 0, PETSC_MAX_REAL, PETSC_TRUE));
     heat->k[m] = k;
     heat->c[m] = c;
   }
-  if (sim.help || !on) PetscFunctionReturn(PETSC_SUCCESS);
+  if (mpm.help || !on) PetscFunctionReturn(PETSC_SUCCESS);
   for (PetscInt m = 0; m < nmat; ++m)
     for (PetscInt l = 0; l < nmat; ++l) heat->several_k = heat->several_k || (heat->k[m] >= 0 && heat->k[l] >= 0 && heat->k[m] != heat->k[l]);
 
-  PetscCall(DMDACreateCompatibleDMDA(sim.grid.da_nodes, 3, &heat->da));
+  PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, 3, &heat->da));
   PetscCall(DMCreateGlobalVector(heat->da, &heat->global));
   PetscCall(DMCreateLocalVector(heat->da, &heat->local));
   PetscCall(VecDuplicate(heat->local, &heat->scratch));
   PetscCall(PetscLogEventRegister("MPM_Heat", DM_CLASSID, &heat->event));
   PetscCall(PetscInfo(heat->da, "Heat conduction on, cfl %g\n", (double)heat->cfl));
-  sim.heat = std::move(heat);
+  mpm.heat = std::move(heat);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -159,7 +159,7 @@ namespace {
 // One pass over the conducting particles; what = 0: P2G of [C, C T]; 1: grad T and Qdot into
 // `out`; 2: T_p += dt sum N Tdot.
 struct HeatKernel {
-  Simulation           &sim;
+  MpmSolver           &mpm;
   const HeatConduction &heat;
   int                   what;
   const PetscScalar    *in;  // ghosted [C, T, Tdot] (passes 1, 2)
@@ -168,15 +168,15 @@ struct HeatKernel {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.grid;
+    const Grid          &g = mpm.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F, *m, *vol;
     const PetscInt      *mat;
     PetscReal           *T;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -246,9 +246,9 @@ struct HeatKernel {
 
 // -mpm_heat_interface laminate: each conducting particle's conductivity tensor (heat.particle_k),
 // from the sums over the particles of its cell (the header's formula).
-PetscErrorCode LaminateConductivities(Simulation &sim, HeatConduction &heat)
+PetscErrorCode LaminateConductivities(MpmSolver &mpm, HeatConduction &heat)
 {
-  const Grid          &g = sim.grid;
+  const Grid          &g = mpm.grid;
   const PetscInt       dim = g.dim;
   const LocalNodeIndex index(g);
   // per cell: V, V k, V/k, V psi, V x (3), V psi x (3), the first k seen, whether another differs
@@ -259,8 +259,8 @@ PetscErrorCode LaminateConductivities(Simulation &sim, HeatConduction &heat)
   const PetscReal *x, *vol;
   const PetscInt  *mat;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::volume, &vol));
   PetscCall(fields.Get(field::material, &mat));
@@ -314,7 +314,7 @@ PetscErrorCode LaminateConductivities(Simulation &sim, HeatConduction &heat)
 
 // Largest diffusivity k V / (m c) over the conducting particles (global), m^2/s, and the material
 // that has it (-1: none conducts).
-PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, PetscReal *alpha, PetscInt *which)
+PetscErrorCode MaxDiffusivity(MpmSolver &mpm, const HeatConduction &heat, PetscReal *alpha, PetscInt *which)
 {
   PetscInt         n;
   const PetscReal *m, *vol;
@@ -322,8 +322,8 @@ PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, Petsc
   PetscReal        local = 0;
   PetscInt         local_mat = -1;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(field::mass, &m));
   PetscCall(fields.Get(field::volume, &vol));
   PetscCall(fields.Get(field::material, &mat));
@@ -340,9 +340,9 @@ PetscErrorCode MaxDiffusivity(Simulation &sim, const HeatConduction &heat, Petsc
     }
   }
   PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Allreduce(&local, alpha, 1, MPIU_REAL, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&local, alpha, 1, MPIU_REAL, MPI_MAX, mpm.comm));
   PetscInt mine = local == *alpha ? local_mat : -1;
-  PetscCallMPI(MPI_Allreduce(&mine, which, 1, MPIU_INT, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&mine, which, 1, MPIU_INT, MPI_MAX, mpm.comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -363,9 +363,9 @@ PetscErrorCode ForOwnedNodes(const HeatConduction &heat, PetscScalar *array, Fn 
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode HeatSubStep(Simulation &sim, HeatConduction &heat, PetscReal dt)
+PetscErrorCode HeatSubStep(MpmSolver &mpm, HeatConduction &heat, PetscReal dt)
 {
-  const Grid  &g = sim.grid;
+  const Grid  &g = mpm.grid;
   const PetscInt dim = g.dim;
   PetscScalar *arr;
   const PetscScalar *in;
@@ -374,8 +374,8 @@ PetscErrorCode HeatSubStep(Simulation &sim, HeatConduction &heat, PetscReal dt)
   PetscCall(VecZeroEntries(heat.local));
   PetscCall(VecGetArray(heat.local, &arr));
   {
-    HeatKernel kernel{sim, heat, 0, nullptr, arr, dt};
-    PetscCall(DispatchShape(dim, sim.shape, kernel));
+    HeatKernel kernel{mpm, heat, 0, nullptr, arr, dt};
+    PetscCall(DispatchShape(dim, mpm.shape, kernel));
   }
   PetscCall(VecRestoreArray(heat.local, &arr));
   PetscCall(VecZeroEntries(heat.global));
@@ -392,8 +392,8 @@ PetscErrorCode HeatSubStep(Simulation &sim, HeatConduction &heat, PetscReal dt)
   PetscCall(VecGetArrayRead(heat.local, &in));
   PetscCall(VecGetArray(heat.scratch, &arr));
   {
-    HeatKernel kernel{sim, heat, 1, in, arr, dt};
-    PetscCall(DispatchShape(dim, sim.shape, kernel));
+    HeatKernel kernel{mpm, heat, 1, in, arr, dt};
+    PetscCall(DispatchShape(dim, mpm.shape, kernel));
   }
   PetscCall(VecRestoreArray(heat.scratch, &arr));
   PetscCall(VecRestoreArrayRead(heat.local, &in));
@@ -411,15 +411,15 @@ PetscErrorCode HeatSubStep(Simulation &sim, HeatConduction &heat, PetscReal dt)
   // 4. T_p
   PetscCall(VecGetArrayRead(heat.local, &in));
   {
-    HeatKernel kernel{sim, heat, 2, in, nullptr, dt};
-    PetscCall(DispatchShape(dim, sim.shape, kernel));
+    HeatKernel kernel{mpm, heat, 2, in, nullptr, dt};
+    PetscCall(DispatchShape(dim, mpm.shape, kernel));
   }
   PetscCall(VecRestoreArrayRead(heat.local, &in));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // After the sub-steps: every conducting particle's temperature is a finite number.
-PetscErrorCode CheckTemperatures(Simulation &sim, const HeatConduction &heat, PetscInt which)
+PetscErrorCode CheckTemperatures(MpmSolver &mpm, const HeatConduction &heat, PetscInt which)
 {
   PetscInt         n, bad = -1;
   const PetscReal *T;
@@ -427,8 +427,8 @@ PetscErrorCode CheckTemperatures(Simulation &sim, const HeatConduction &heat, Pe
   PetscInt64      *pid;
   PetscInt64       bad_id = -1, global_id;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::material, &mat));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
@@ -438,57 +438,57 @@ PetscErrorCode CheckTemperatures(Simulation &sim, const HeatConduction &heat, Pe
       bad_id = pid[p];
     }
   PetscCall(fields.RestoreAll());
-  PetscCallMPI(MPI_Allreduce(&bad_id, &global_id, 1, MPIU_INT64, MPI_MAX, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&bad_id, &global_id, 1, MPIU_INT64, MPI_MAX, mpm.comm));
   if (global_id < 0) PetscFunctionReturn(PETSC_SUCCESS);
-  const std::string name = sim.materials[which >= 0 ? which : 0]->name_;
-  SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)", sim.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
+  const std::string name = mpm.materials[which >= 0 ? which : 0]->name_;
+  SETERRQ(mpm.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)", mpm.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
 }
 } // namespace
 
 // The sub-step count is computed before any sub-step runs and bounded by -mpm_heat_max_substeps,
 // so that one time step's conduction work is bounded: a stop signal (SIGTERM/SIGUSR1) or the
 // wall-clock budget, acted on between time steps, then waits at most that many sub-steps.
-PetscErrorCode ConductHeat(Simulation &sim)
+PetscErrorCode ConductHeat(MpmSolver &mpm)
 {
   PetscFunctionBeginUser;
-  if (!sim.heat) PetscFunctionReturn(PETSC_SUCCESS);
-  HeatConduction &heat = *sim.heat;
+  if (!mpm.heat) PetscFunctionReturn(PETSC_SUCCESS);
+  HeatConduction &heat = *mpm.heat;
   PetscCall(PetscLogEventBegin(heat.event, 0, 0, 0, 0));
   PetscReal alpha, inv_h2 = 0;
   PetscInt  which;
-  if (heat.interface == HeatInterface::Laminate && heat.several_k) PetscCall(LaminateConductivities(sim, heat));
-  PetscCall(MaxDiffusivity(sim, heat, &alpha, &which));
-  for (PetscInt d = 0; d < sim.grid.dim; ++d) inv_h2 += 1.0 / (sim.grid.h[d] * sim.grid.h[d]);
-  if (alpha > 0 && sim.dt > 0) {
+  if (heat.interface == HeatInterface::Laminate && heat.several_k) PetscCall(LaminateConductivities(mpm, heat));
+  PetscCall(MaxDiffusivity(mpm, heat, &alpha, &which));
+  for (PetscInt d = 0; d < mpm.grid.dim; ++d) inv_h2 += 1.0 / (mpm.grid.h[d] * mpm.grid.h[d]);
+  if (alpha > 0 && mpm.dt > 0) {
     const PetscReal limit  = heat.cfl / (2 * alpha * inv_h2);
-    const PetscReal needed = std::ceil(sim.dt / limit * (1 - 1e-12)); // inf or NaN for an unbounded input
+    const PetscReal needed = std::ceil(mpm.dt / limit * (1 - 1e-12)); // inf or NaN for an unbounded input
     if (!(needed <= (PetscReal)heat.max_substeps)) {
-      const Material &m = *sim.materials[which >= 0 ? which : 0];
+      const Material &m = *mpm.materials[which >= 0 ? which : 0];
       auto            g = [](PetscReal v) { // C's %g (PETSc's adds a trailing point to whole numbers)
         char buf[32];
         std::snprintf(buf, sizeof(buf), "%g", (double)v);
         return std::string(buf);
       };
-      SETERRQ(sim.comm, PETSC_ERR_USER_INPUT,
+      SETERRQ(mpm.comm, PETSC_ERR_USER_INPUT,
               "Heat conduction, step %" PetscInt_FMT ": the time step %s s would need %s conduction sub-steps (explicit limit %s s at -mpm_heat_cfl %s), more than -mpm_heat_max_substeps %" PetscInt_FMT "; it is driven by material %s: -%s_thermal_conductivity %s W/(m K) with -%s_heat_capacity %s J/(kg K) (diffusivity %s m^2/s). "
               "Lower the conductivity, use a smaller time step (-mpm_dt, -mpm_dt_max) or coarser grid, or raise -mpm_heat_max_substeps",
-              sim.step + 1, g(sim.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(), g(alpha).c_str());
+              mpm.step + 1, g(mpm.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(), g(alpha).c_str());
     }
     const PetscInt nsub = PetscMax(1, (PetscInt)needed);
     heat.last_substeps  = nsub;
-    for (PetscInt s = 0; s < nsub; ++s) PetscCall(HeatSubStep(sim, heat, sim.dt / nsub));
-    PetscCall(CheckTemperatures(sim, heat, which));
+    for (PetscInt s = 0; s < nsub; ++s) PetscCall(HeatSubStep(mpm, heat, mpm.dt / nsub));
+    PetscCall(CheckTemperatures(mpm, heat, which));
   }
   PetscCall(PetscLogEventEnd(heat.event, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode HeatSetSurfaceSource(Simulation &sim, PetscBool on, PetscReal source_temperature)
+PetscErrorCode HeatSetSurfaceSource(MpmSolver &mpm, PetscBool on, PetscReal source_temperature)
 {
   PetscFunctionBeginUser;
-  PetscCheck(sim.heat, sim.comm, PETSC_ERR_USER_INPUT, "A surface heat source needs -mpm_heat_conduction");
-  sim.heat->surface_source     = on;
-  sim.heat->source_temperature = source_temperature;
+  PetscCheck(mpm.heat, mpm.comm, PETSC_ERR_USER_INPUT, "A surface heat source needs -mpm_heat_conduction");
+  mpm.heat->surface_source     = on;
+  mpm.heat->source_temperature = source_temperature;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

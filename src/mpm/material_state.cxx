@@ -1,5 +1,5 @@
 // The models' state fields on the swarm (src/mpm/material_state.hpp).
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "mpm/material_state.hpp"
 #include <string>
 

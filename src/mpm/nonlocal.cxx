@@ -56,29 +56,29 @@ PetscErrorCode NonlocalGridDestroy(void *ctx)
 }
 
 // The state, composed with the swarm (it lives and dies with it).
-PetscErrorCode NonlocalGridGet(Simulation &sim, NonlocalGrid **out)
+PetscErrorCode NonlocalGridGet(MpmSolver &mpm, NonlocalGrid **out)
 {
   PetscContainer container = nullptr;
   PetscFunctionBeginUser;
-  PetscCall(PetscObjectQuery((PetscObject)sim.swarm, "burst_nonlocal_grid", (PetscObject *)&container));
+  PetscCall(PetscObjectQuery((PetscObject)mpm.swarm, "burst_nonlocal_grid", (PetscObject *)&container));
   if (!container) {
     auto *g = new NonlocalGrid();
     PetscCall(PetscLogEventRegister("MPM_Nonlocal", DM_CLASSID, &g->event));
-    PetscCall(PetscContainerCreate(sim.comm, &container));
+    PetscCall(PetscContainerCreate(mpm.comm, &container));
     PetscCall(PetscContainerSetPointer(container, g));
     PetscCall(PetscContainerSetUserDestroy(container, NonlocalGridDestroy));
-    PetscCall(PetscObjectCompose((PetscObject)sim.swarm, "burst_nonlocal_grid", (PetscObject)container));
+    PetscCall(PetscObjectCompose((PetscObject)mpm.swarm, "burst_nonlocal_grid", (PetscObject)container));
     PetscCall(PetscContainerDestroy(&container));
-    PetscCall(PetscObjectQuery((PetscObject)sim.swarm, "burst_nonlocal_grid", (PetscObject *)&container));
+    PetscCall(PetscObjectQuery((PetscObject)mpm.swarm, "burst_nonlocal_grid", (PetscObject *)&container));
   }
   PetscCall(PetscContainerGetPointer(container, (void **)out));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // (Re)builds the DMDA when the width or the grid's ownership changed.
-PetscErrorCode NonlocalGridSetUp(Simulation &sim, NonlocalGrid &g, PetscInt width, const char material[], PetscReal ell)
+PetscErrorCode NonlocalGridSetUp(MpmSolver &mpm, NonlocalGrid &g, PetscInt width, const char material[], PetscReal ell)
 {
-  const Grid     &grid = sim.grid;
+  const Grid     &grid = mpm.grid;
   const PetscInt *l[3] = {nullptr, nullptr, nullptr};
   PetscInt        m[3] = {1, 1, 1};
   PetscFunctionBeginUser;
@@ -90,14 +90,14 @@ PetscErrorCode NonlocalGridSetUp(Simulation &sim, NonlocalGrid &g, PetscInt widt
   for (PetscInt d = 0; d < grid.dim; ++d) {
     g.ranges[d].assign(l[d], l[d] + m[d]);
     for (PetscInt r = 0; r < m[d] && m[d] > 1; ++r) // one rank along d: every node is local (DMDA allows that)
-      PetscCheck(l[d][r] >= width, sim.comm, PETSC_ERR_USER_INPUT, "-%s_regularization_length %g m spans %" PetscInt_FMT " cells, more than the %" PetscInt_FMT " nodes a rank owns along direction %" PetscInt_FMT ": use fewer ranks, a finer grid or a shorter length", material, (double)ell, width, l[d][r], d);
+      PetscCheck(l[d][r] >= width, mpm.comm, PETSC_ERR_USER_INPUT, "-%s_regularization_length %g m spans %" PetscInt_FMT " cells, more than the %" PetscInt_FMT " nodes a rank owns along direction %" PetscInt_FMT ": use fewer ranks, a finer grid or a shorter length", material, (double)ell, width, l[d][r], d);
   }
   PetscCall(VecDestroy(&g.global));
   PetscCall(VecDestroy(&g.local));
   PetscCall(DMDestroy(&g.da));
   const DMBoundaryType bt = DM_BOUNDARY_NONE;
-  if (grid.dim == 2) PetscCall(DMDACreate2d(sim.comm, bt, bt, DMDA_STENCIL_BOX, grid.cells[0] + 1, grid.cells[1] + 1, m[0], m[1], kDof, width, l[0], l[1], &g.da));
-  else PetscCall(DMDACreate3d(sim.comm, bt, bt, bt, DMDA_STENCIL_BOX, grid.cells[0] + 1, grid.cells[1] + 1, grid.cells[2] + 1, m[0], m[1], m[2], kDof, width, l[0], l[1], l[2], &g.da));
+  if (grid.dim == 2) PetscCall(DMDACreate2d(mpm.comm, bt, bt, DMDA_STENCIL_BOX, grid.cells[0] + 1, grid.cells[1] + 1, m[0], m[1], kDof, width, l[0], l[1], &g.da));
+  else PetscCall(DMDACreate3d(mpm.comm, bt, bt, bt, DMDA_STENCIL_BOX, grid.cells[0] + 1, grid.cells[1] + 1, grid.cells[2] + 1, m[0], m[1], m[2], kDof, width, l[0], l[1], l[2], &g.da));
   PetscCall(DMSetUp(g.da));
   PetscCall(DMCreateGlobalVector(g.da, &g.global));
   PetscCall(DMCreateLocalVector(g.da, &g.local));
@@ -171,31 +171,31 @@ void BellPass(const Grid &grid, const PetscInt xs[3], const PetscInt xm[3], cons
 
 // The nonlocal averages of the kNonlocalSource values of every material with a NonlocalLength.
 // Collective; a no-op (one loop over the materials) when no material asks for it.
-PetscErrorCode NonlocalAverage(Simulation &sim)
+PetscErrorCode NonlocalAverage(MpmSolver &mpm)
 {
-  const Grid   &grid = sim.grid;
+  const Grid   &grid = mpm.grid;
   NonlocalGrid *g    = nullptr;
   PetscFunctionBeginUser;
-  if (!sim.HasParticles()) PetscFunctionReturn(PETSC_SUCCESS);
+  if (!mpm.HasParticles()) PetscFunctionReturn(PETSC_SUCCESS);
   bool any = false;
-  for (const auto &m : sim.materials) any = any || m->NonlocalLength() > 0;
+  for (const auto &m : mpm.materials) any = any || m->NonlocalLength() > 0;
   if (!any) PetscFunctionReturn(PETSC_SUCCESS);
-  PetscCall(NonlocalGridGet(sim, &g));
+  PetscCall(NonlocalGridGet(mpm, &g));
   if (g->first_call) {
     // The stress update before the first average applied its increments locally (nonlocal_active_
     // was false): from the next step on it leaves them to the average.
     g->first_call = false;
-    for (auto &m : sim.materials)
+    for (auto &m : mpm.materials)
       if (m->NonlocalLength() > 0) m->nonlocal_active_ = true;
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscLogEventBegin(g->event, 0, 0, 0, 0));
-  for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
-    const PetscReal ell = sim.materials[id]->NonlocalLength();
+  for (PetscInt id = 0; id < (PetscInt)mpm.materials.size(); ++id) {
+    const PetscReal ell = mpm.materials[id]->NonlocalLength();
     if (!(ell > 0)) continue;
     PetscInt width = 1;
     for (PetscInt d = 0; d < grid.dim; ++d) width = PetscMax(width, (PetscInt)std::ceil(ell / grid.h[d] - 1e-12));
-    PetscCall(NonlocalGridSetUp(sim, *g, width, sim.materials[id]->Name(), ell));
+    PetscCall(NonlocalGridSetUp(mpm, *g, width, mpm.materials[id]->Name(), ell));
     PetscInt xs[3] = {0, 0, 0}, xm[3] = {1, 1, 1}, gs[3] = {0, 0, 0}, gm[3] = {1, 1, 1};
     PetscCall(DMDAGetCorners(g->da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
     PetscCall(DMDAGetGhostCorners(g->da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
@@ -204,8 +204,8 @@ PetscErrorCode NonlocalAverage(Simulation &sim)
     const PetscReal *x, *source;
     PetscReal       *average;
     const PetscInt  *material;
-    SwarmAccess      fields(sim.swarm);
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    SwarmAccess      fields(mpm.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::material, &material));
     PetscCall(fields.Get(kNonlocalSource, &source));
@@ -223,7 +223,7 @@ PetscErrorCode NonlocalAverage(Simulation &sim)
         for (PetscInt b = 0; b < 2; ++b)
           for (PetscInt a = 0; a < 2; ++a) {
             const PetscInt ijk[3] = {h.i[0] + a, h.i[1] + b, grid.dim == 3 ? h.i[2] + c : 0};
-            for (PetscInt d = 0; d < grid.dim; ++d) PetscCheck(ijk[d] >= gs[d] && ijk[d] < gs[d] + gm[d], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nonlocal average: a particle of rank %d lies outside its ghosted nodes", sim.rank);
+            for (PetscInt d = 0; d < grid.dim; ++d) PetscCheck(ijk[d] >= gs[d] && ijk[d] < gs[d] + gm[d], PETSC_COMM_SELF, PETSC_ERR_PLIB, "Nonlocal average: a particle of rank %d lies outside its ghosted nodes", mpm.rank);
             const PetscReal w = s[0] * h.w[0][a] * h.w[1][b] * h.w[2][c];
             PetscReal      *v = L + kDof * local_index(ijk);
             v[0] += w;

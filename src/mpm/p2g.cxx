@@ -24,7 +24,7 @@ namespace burst {
 
 namespace {
 struct P2GKernel {
-  Simulation        &sim;
+  MpmSolver        &mpm;
   P2GRequest         what;
   PetscScalar       *nodal;
   const PetscScalar *vel = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
@@ -33,9 +33,9 @@ struct P2GKernel {
   PetscErrorCode operator()()
   {
     PetscFunctionBeginUser;
-    const bool apic = sim.transfer == Transfer::APIC && what.momentum;
+    const bool apic = mpm.transfer == Transfer::APIC && what.momentum;
     if constexpr (DIM == 2) {
-      if (sim.axisymmetric) {
+      if (mpm.axisymmetric) {
         if (apic) PetscCall((ByRequest<DIM, S, true, true>()));
         else PetscCall((ByRequest<DIM, S, true, false>()));
         PetscFunctionReturn(PETSC_SUCCESS);
@@ -75,21 +75,21 @@ struct P2GKernel {
   {
     constexpr bool APIC = APIC_ && MOM;
     static_assert(!REMAP || (MOM && !MASS && !FORCE && !APIC), "the remap sums momentum only");
-    const Grid          &g = sim.grid;
+    const Grid          &g = mpm.grid;
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *m, *vol, *hw, *F, *sigma, *fext, *q, *ambient = nullptr, *affine = nullptr;
     PetscReal           *v;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
-    const PetscReal      flip = sim.flip_fraction, dt = sim.dt;
+    const PetscReal      flip = mpm.flip_fraction, dt = mpm.dt;
     PetscReal            work = 0; // the remap: work of the external forces (as in G2P)
     (void)vdof, (void)flip, (void)dt;
     const PetscInt      *failed = nullptr, *material = nullptr;
     const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-    SwarmAccess fields(sim.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::mass, &m));
@@ -99,14 +99,14 @@ struct P2GKernel {
     PetscCall(fields.Get(field::stress, &sigma));
     PetscCall(fields.Get(field::external_force, &fext));
     PetscCall(fields.Get(field::bulk_viscosity, &q));
-    if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
+    if (mpm.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
     if constexpr (APIC) PetscCall(fields.Get(field::affine, &affine));
     if (nvf > 1) PetscCall(fields.Get(field::material, &material));
-    if (nvf > 1 && sim.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
+    if (nvf > 1 && mpm.convert_failed) PetscCall(fields.Get(state_field::failed, &failed));
     bool             fill;
-    Stencil<DIM, S> *stencils = sim.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = mpm.stencil_cache.Prepare<DIM, S>(n, mpm.step, &fill);
     constexpr bool   do_mass = MASS, do_mom = MOM, do_force = FORCE;
-    const bool       deformable_gradients = sim.TwoDeformableFields();
+    const bool       deformable_gradients = mpm.TwoDeformableFields();
     // external forces as a compile-time switch for the whole loop: without loads (most scenes) the
     // force is the internal one alone
     auto particles = [&](auto external) {
@@ -116,7 +116,7 @@ struct P2GKernel {
         if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
         if constexpr (MASS) reached[index(st.idx[0][0], st.idx[1][0], DIM == 3 ? st.idx[DIM - 1][0] : 0)] = 1;
         const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
-        const PetscInt   vf = nvf > 1 ? sim.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
+        const PetscInt   vf = nvf > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
         const PetscReal *xp = x + DIM * p;
         // The particle's values in locals: the node array's stores cannot alias them, so the scatter
         // below reads them from registers (same operations, same order).
@@ -131,7 +131,7 @@ struct P2GKernel {
         for (int b = 0; b < DIM; ++b) s01[b] = Pair{s[0][b], s[1][b]};
         // a rigid particle carries no stress, and its field's velocity is prescribed (the grid update
         // sets it, so its momentum is never read): mass and the mass gradient only, for the contact
-        const bool deformable = !(material && material[p] == sim.rigid_material);
+        const bool deformable = !(material && material[p] == mpm.rigid_material);
         PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
         if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
         (void)hoop;
@@ -189,9 +189,9 @@ struct P2GKernel {
         else scatter(std::true_type{}, std::false_type{});
       }
     };
-    if (HasExternalForces(sim)) particles(std::true_type{});
+    if (HasExternalForces(mpm)) particles(std::true_type{});
     else particles(std::false_type{});
-    if constexpr (REMAP) sim.diag.external_work += work;
+    if constexpr (REMAP) mpm.diag.external_work += work;
     PetscCall(fields.RestoreAll());
     PetscFunctionReturn(PETSC_SUCCESS);
   }
@@ -203,8 +203,8 @@ struct P2GKernel {
   {
     PetscReal       *vp     = v + DIM * p;
     const PetscReal *fext_p = fext ? fext + DIM * p : nullptr;
-    if (material && material[p] == sim.rigid_material) {
-      SetParticleVelocity<DIM>(vp, sim.rigid_velocity, fext_p, dt, work);
+    if (material && material[p] == mpm.rigid_material) {
+      SetParticleVelocity<DIM>(vp, mpm.rigid_velocity, fext_p, dt, work);
       return;
     }
     PetscReal dv[DIM] = {}, vnew[DIM] = {};
@@ -225,10 +225,10 @@ struct P2GKernel {
 // From each particle's first stencil node (marked by the kernel) to every node its stencil can
 // reach: the next NS - 1 nodes in each direction. Owned nodes within NS - 1 of a face with ghost
 // nodes are marked whole: the neighbour's particles add to them through the ghost sum.
-static PetscErrorCode SpreadReached(Simulation &sim)
+static PetscErrorCode SpreadReached(MpmSolver &mpm)
 {
-  Grid          &g      = sim.grid;
-  const PetscInt spread = ShapeGhostWidth(sim.shape), n[3] = {g.gxm[0], g.gxm[1], g.dim == 3 ? g.gxm[2] : 1};
+  Grid          &g      = mpm.grid;
+  const PetscInt spread = ShapeGhostWidth(mpm.shape), n[3] = {g.gxm[0], g.gxm[1], g.dim == 3 ? g.gxm[2] : 1};
   const PetscInt step[3] = {1, n[0], n[0] * n[1]};
   unsigned char *r       = g.reached.data();
   PetscInt       xs[3], xm[3];
@@ -257,7 +257,7 @@ static PetscErrorCode SpreadReached(Simulation &sim)
           for (PetscInt i = lo[0]; i < hi[0]; ++i) r[i + j * step[1] + k * step[2]] = 1;
     }
   }
-  g.reached_step = sim.step;
+  g.reached_step = mpm.step;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -284,16 +284,16 @@ static void ZeroNodes(const Grid &g, const unsigned char *marks, PetscScalar *ar
 // one (whose other dofs would be added again). Without a valid mark (the first P2G, a new grid
 // layout) the whole vectors are zeroed. This spares zeroing the empty part of the grid (85 % of the
 // Taylor deck's nodes) twice per step.
-static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscScalar *vel)
+static PetscErrorCode NodalSums(MpmSolver &mpm, P2GRequest what, const PetscScalar *vel)
 {
-  Grid          &g = sim.grid;
+  Grid          &g = mpm.grid;
   PetscScalar   *nodal;
   PetscInt       nlocal, nghosted, xs[3], xm[3];
   const PetscInt dof = g.num_velocity_fields * g.NodeStride(), dim = g.dim, stride = g.NodeStride();
   PetscFunctionBeginUser;
   // The requested dofs of one node, every field
   PetscInt zero[3 * (1 + 3 * 3)], nzero = 0;
-  PetscCheck(g.num_velocity_fields <= 3, sim.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
+  PetscCheck(g.num_velocity_fields <= 3, mpm.comm, PETSC_ERR_PLIB, "At most 3 velocity fields, not %" PetscInt_FMT, g.num_velocity_fields);
   for (PetscInt vf = 0; vf < g.num_velocity_fields; ++vf) {
     const PetscInt base = vf * stride;
     if (what.mass) {
@@ -316,7 +316,7 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   const bool   direct        = nlocal == nghosted;
   const size_t ghosted_nodes = (size_t)g.gxm[0] * g.gxm[1] * g.gxm[2];
   // the nodes that can hold sums (null: any node, the whole vectors are zeroed)
-  const unsigned char *old_marks = g.reached.size() == ghosted_nodes && (what.mass || g.reached_step == sim.step) ? g.reached.data() : nullptr;
+  const unsigned char *old_marks = g.reached.size() == ghosted_nodes && (what.mass || g.reached_step == mpm.step) ? g.reached.data() : nullptr;
   const bool           all       = what.mass || nzero == dof; // a P2G of the masses zeroes every dof
   if (!old_marks && all) PetscCall(VecZeroEntries(g.nodal));
   else {
@@ -334,23 +334,23 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
   }
   Vec target = direct ? g.nodal : g.nodal_local;
   PetscCall(VecGetArray(target, &nodal));
-  P2GKernel kernel{sim, what, nodal, vel};
+  P2GKernel kernel{mpm, what, nodal, vel};
   if (what.mass) {
     g.reached.assign(ghosted_nodes, 0);
     kernel.reached = g.reached.data();
   }
-  PetscCall(DispatchShape(dim, sim.shape, kernel));
+  PetscCall(DispatchShape(dim, mpm.shape, kernel));
   PetscCall(VecRestoreArray(target, &nodal));
-  if (what.mass) PetscCall(SpreadReached(sim));
+  if (what.mass) PetscCall(SpreadReached(mpm));
   if (!direct) {
     // DMLocalToGlobal(ADD_VALUES) in two parts: the owned nodes that the particles reach added here
     // (the others hold zeros), then the ghost nodes through the scatter
     PetscCheck(g.ghost_sums, PETSC_COMM_SELF, PETSC_ERR_PLIB, "The ghost-node scatter of the nodal sums is missing");
-    PetscCall(PetscLogEventBegin(sim.ev_ghost_sums, 0, 0, 0, 0));
+    PetscCall(PetscLogEventBegin(mpm.ev_ghost_sums, 0, 0, 0, 0));
     const PetscScalar *local;
     PetscCall(VecGetArrayRead(g.nodal_local, &local));
     PetscCall(VecGetArray(g.nodal, &nodal));
-    const unsigned char *marks = g.reached_step == sim.step ? g.reached.data() : nullptr; // this step's marks (the mass P2G above, or the one before at the same positions)
+    const unsigned char *marks = g.reached_step == mpm.step ? g.reached.data() : nullptr; // this step's marks (the mass P2G above, or the one before at the same positions)
     ForEachMarkedRun(g, marks, xs, xm, [&](PetscInt l, PetscInt at, PetscInt count, PetscInt, PetscInt, PetscInt) {
       for (PetscInt node = 0; node < count; ++node)
         for (PetscInt z = 0; z < nzero; ++z) nodal[(l + node) * dof + zero[z]] += local[(at + node) * dof + zero[z]]; // the requested dofs (the local vector's others are zero)
@@ -359,34 +359,34 @@ static PetscErrorCode NodalSums(Simulation &sim, P2GRequest what, const PetscSca
     PetscCall(VecRestoreArrayRead(g.nodal_local, &local));
     PetscCall(VecScatterBegin(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
     PetscCall(VecScatterEnd(g.ghost_sums, g.nodal_local, g.nodal, ADD_VALUES, SCATTER_FORWARD));
-    PetscCall(PetscLogEventEnd(sim.ev_ghost_sums, 0, 0, 0, 0));
+    PetscCall(PetscLogEventEnd(mpm.ev_ghost_sums, 0, 0, 0, 0));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ParticlesToGrid(Simulation &sim, P2GRequest what)
+PetscErrorCode ParticlesToGrid(MpmSolver &mpm, P2GRequest what)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_p2g, 0, 0, 0, 0));
-  PetscCall(NodalSums(sim, what, nullptr));
-  PetscCall(PetscLogEventEnd(sim.ev_p2g, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(mpm.ev_p2g, 0, 0, 0, 0));
+  PetscCall(NodalSums(mpm, what, nullptr));
+  PetscCall(PetscLogEventEnd(mpm.ev_p2g, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode RemapMomentum(Simulation &sim)
+PetscErrorCode RemapMomentum(MpmSolver &mpm)
 {
   const PetscScalar *vel;
   PetscFunctionBeginUser;
-  if (sim.transfer != Transfer::FlipPic) { // APIC and XPIC: their own velocity pass, then the sums
-    PetscCall(GridToParticles(sim, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
-    PetscCall(ParticlesToGrid(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+  if (mpm.transfer != Transfer::FlipPic) { // APIC and XPIC: their own velocity pass, then the sums
+    PetscCall(GridToParticles(mpm, {PETSC_TRUE, PETSC_FALSE, PETSC_FALSE}));
+    PetscCall(ParticlesToGrid(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCall(PetscLogEventBegin(sim.ev_remap, 0, 0, 0, 0));
-  PetscCall(VecGetArrayRead(sim.grid.velocity_local, &vel));
-  PetscCall(NodalSums(sim, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}, vel));
-  PetscCall(VecRestoreArrayRead(sim.grid.velocity_local, &vel));
-  PetscCall(PetscLogEventEnd(sim.ev_remap, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(mpm.ev_remap, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(mpm.grid.velocity_local, &vel));
+  PetscCall(NodalSums(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}, vel));
+  PetscCall(VecRestoreArrayRead(mpm.grid.velocity_local, &vel));
+  PetscCall(PetscLogEventEnd(mpm.ev_remap, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

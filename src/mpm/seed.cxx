@@ -7,7 +7,6 @@
 #include "mpm/material_state.hpp"
 #include "util.hpp"
 #include "memory.hpp"
-#include "scenes/analytic.hpp"
 #include <cmath>
 
 namespace burst {
@@ -68,13 +67,13 @@ bool Geometry::Contains(const PetscReal x[]) const
   return true;
 }
 
-PetscErrorCode ReadLoadCurves(Simulation &sim)
+PetscErrorCode ReadLoadCurves(MpmSolver &mpm)
 {
   char     *names[32];
   PetscInt  n = 32;
   PetscBool set;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Load curves", "Loads");
+  PetscOptionsBegin(mpm.comm, "", "Load curves", "Loads");
   PetscCall(PetscOptionsStringArray("-load_curves", "Names of piecewise-linear load curves; each is given by -<name>_time t0,t1,... (s) and -<name>_value v0,v1,... (Pa)", "", names, &n, &set));
   PetscOptionsEnd();
   if (!set) n = 0;
@@ -84,38 +83,38 @@ PetscErrorCode ReadLoadCurves(Simulation &sim)
     PetscInt  nt = 256, nv = 256;
     PetscBool st = PETSC_FALSE, sv = PETSC_FALSE;
     curve.name = names[c];
-    PetscOptionsBegin(sim.comm, (curve.name + "_").c_str(), "Load curve", "Loads");
+    PetscOptionsBegin(mpm.comm, (curve.name + "_").c_str(), "Load curve", "Loads");
     PetscCall(PetscOptionsRealArray("-time", "Times of the load curve points (s), increasing", "", t, &nt, &st));
     PetscCall(PetscOptionsRealArray("-value", "Values at those times (Pa)", "", v, &nv, &sv));
     PetscOptionsEnd();
-    PetscCheck(st && sv && nt == nv && nt >= 1, sim.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': give -%s_time and -%s_value with the same number (>= 1) of entries", names[c], names[c], names[c]);
+    PetscCheck(st && sv && nt == nv && nt >= 1, mpm.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': give -%s_time and -%s_value with the same number (>= 1) of entries", names[c], names[c], names[c]);
     for (PetscInt k = 0; k < nt; ++k) {
-      PetscCheck(k == 0 || t[k] > t[k - 1], sim.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': -%s_time must be strictly increasing", names[c], names[c]);
+      PetscCheck(k == 0 || t[k] > t[k - 1], mpm.comm, PETSC_ERR_USER_INPUT, "Load curve '%s': -%s_time must be strictly increasing", names[c], names[c]);
       curve.time.push_back(t[k]);
       curve.value.push_back(v[k]);
     }
-    sim.load_curves.push_back(curve);
+    mpm.load_curves.push_back(curve);
     PetscCall(PetscFree(names[c]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode ReadGeometries(Simulation &sim)
+PetscErrorCode ReadGeometries(MpmSolver &mpm)
 {
   char     *names[64];
   PetscInt  n = 64;
   PetscBool set;
-  const PetscInt dim = sim.grid.dim;
+  const PetscInt dim = mpm.grid.dim;
   PetscFunctionBeginUser;
-  PetscOptionsBegin(sim.comm, "", "Geometry objects", "Seeding");
+  PetscOptionsBegin(mpm.comm, "", "Geometry objects", "Seeding");
   PetscCall(PetscOptionsStringArray("-geometries", "Names of the geometry objects that seed particles; each is configured with -<name>_type etc.", "", names, &n, &set));
   PetscOptionsEnd();
-  if (sim.help && (!(set && n > 0) || sim.materials.empty())) PetscFunctionReturn(PETSC_SUCCESS);
-  if (sim.materials.empty()) { // no solids: a gas-only scene seeds nothing
-    PetscCheck(!(set && n > 0), sim.comm, PETSC_ERR_USER_INPUT, "Option -geometries seeds particles, but -materials lists no solid material for them");
+  if (mpm.help && (!(set && n > 0) || mpm.materials.empty())) PetscFunctionReturn(PETSC_SUCCESS);
+  if (mpm.materials.empty()) { // no solids: a gas-only scene seeds nothing
+    PetscCheck(!(set && n > 0), mpm.comm, PETSC_ERR_USER_INPUT, "Option -geometries seeds particles, but -materials lists no solid material for them");
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscCheck(set && n > 0, sim.comm, PETSC_ERR_USER_INPUT, "No particles: give -geometries name1,name2,... and configure each with -<name>_type (box, disk, cylinder, annulus, sphere)");
+  PetscCheck(set && n > 0, mpm.comm, PETSC_ERR_USER_INPUT, "No particles: give -geometries name1,name2,... and configure each with -<name>_type (box, disk, cylinder, annulus, sphere)");
   for (PetscInt gi = 0; gi < n; ++gi) {
     auto  g     = std::make_unique<Geometry>();
     int   type  = 0, surface = 0;
@@ -125,7 +124,7 @@ PetscErrorCode ReadGeometries(Simulation &sim)
     g->dim  = dim;
     const std::string pre = g->name + "_";
     const char       *P   = pre.c_str();
-    PetscOptionsBegin(sim.comm, P, "Geometry object", "Seeding");
+    PetscOptionsBegin(mpm.comm, P, "Geometry object", "Seeding");
     PetscCall(OptionsChoice(PetscOptionsObject, "-type", "Shape of the object", GeometryTypeNames, 5, &type, &has_type));
     g->type = (GeometryType)type;
     PetscCall(PetscOptionsString("-material", "Name of the material filling the object (one of -materials)", "", material, material, sizeof(material), &has_material));
@@ -145,35 +144,35 @@ PetscErrorCode ReadGeometries(Simulation &sim)
     PetscCall(PetscOptionsString("-pressure_curve", "Name of the load curve (of -load_curves) giving the pressure on that surface", "", curve, curve, sizeof(curve), &has_curve));
     PetscOptionsEnd();
 
-    PetscCheck(has_type, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%stype (box, disk, cylinder, annulus, sphere)", P, P);
-    PetscCheck(has_material, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%smaterial (one of the names in -materials)", names[gi], P);
+    PetscCheck(has_type, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%stype (box, disk, cylinder, annulus, sphere)", P, P);
+    PetscCheck(has_material, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': give -%smaterial (one of the names in -materials)", names[gi], P);
     g->material = -1;
-    for (size_t m = 0; m < sim.materials.size(); ++m)
-      if (sim.materials[m]->name_ == material) g->material = (PetscInt)m;
-    PetscCheck(g->material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%smaterial %s is not one of -materials", names[gi], P, material);
-    PetscCheck(g->particles_per_cell >= 1 && g->particles_per_cell <= 16, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sparticles_per_cell = %" PetscInt_FMT " is out of range: it must be in [1, 16]", P, g->particles_per_cell);
-    PetscCall(CheckRange(sim.comm, Prefixed(P, "temperature").c_str(), g->temperature, 0, 1e6, PETSC_TRUE));
+    for (size_t m = 0; m < mpm.materials.size(); ++m)
+      if (mpm.materials[m]->name_ == material) g->material = (PetscInt)m;
+    PetscCheck(g->material >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%smaterial %s is not one of -materials", names[gi], P, material);
+    PetscCheck(g->particles_per_cell >= 1 && g->particles_per_cell <= 16, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sparticles_per_cell = %" PetscInt_FMT " is out of range: it must be in [1, 16]", P, g->particles_per_cell);
+    PetscCall(CheckRange(mpm.comm, Prefixed(P, "temperature").c_str(), g->temperature, 0, 1e6, PETSC_TRUE));
     // bounded by physics (detonation products move at ~1e4 m/s): a typo of exponent stops here, not as a NaN in step 0
-    for (PetscInt d = 0; d < dim; ++d) PetscCall(CheckRange(sim.comm, Prefixed(P, "velocity").c_str(), g->velocity[d], -1e5, 1e5, PETSC_FALSE));
-    PetscCall(CheckRange(sim.comm, Prefixed(P, "radial_velocity").c_str(), g->radial_velocity, -1e5, 1e5, PETSC_FALSE));
-    if (g->type != GeometryType::Box) PetscCall(CheckRange(sim.comm, Prefixed(P, "radius").c_str(), g->radius, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    for (PetscInt d = 0; d < dim; ++d) PetscCall(CheckRange(mpm.comm, Prefixed(P, "velocity").c_str(), g->velocity[d], -1e5, 1e5, PETSC_FALSE));
+    PetscCall(CheckRange(mpm.comm, Prefixed(P, "radial_velocity").c_str(), g->radial_velocity, -1e5, 1e5, PETSC_FALSE));
+    if (g->type != GeometryType::Box) PetscCall(CheckRange(mpm.comm, Prefixed(P, "radius").c_str(), g->radius, 0, PETSC_MAX_REAL, PETSC_TRUE));
     if (g->type == GeometryType::Annulus) {
-      PetscCheck(g->inner_radius >= 0 && g->inner_radius < g->radius, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sinner_radius = %g is out of range: it must be in [0, radius = %g)", P, (double)g->inner_radius, (double)g->radius);
+      PetscCheck(g->inner_radius >= 0 && g->inner_radius < g->radius, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sinner_radius = %g is out of range: it must be in [0, radius = %g)", P, (double)g->inner_radius, (double)g->radius);
     }
     if (g->type == GeometryType::Box || ((g->type == GeometryType::Cylinder || g->type == GeometryType::Annulus) && dim == 3)) {
       const PetscInt d0 = g->type == GeometryType::Box ? 0 : 2;
-      for (PetscInt d = d0; d < dim; ++d) PetscCheck(g->upper[d] > g->lower[d], sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%supper must exceed -%slower in direction %" PetscInt_FMT, names[gi], P, P, d);
+      for (PetscInt d = d0; d < dim; ++d) PetscCheck(g->upper[d] > g->lower[d], mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%supper must exceed -%slower in direction %" PetscInt_FMT, names[gi], P, P, d);
     }
-    PetscCheck(g->type != GeometryType::Disk || dim == 2, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%stype disk is 2-D; in 3-D use cylinder or sphere", names[gi], P);
-    PetscCheck(g->angle_range[1] > g->angle_range[0] && g->angle_range[1] - g->angle_range[0] <= 360, sim.comm, PETSC_ERR_USER_INPUT, "Option -%sangle_range: need start < end <= start + 360 (degrees)", P);
+    PetscCheck(g->type != GeometryType::Disk || dim == 2, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%stype disk is 2-D; in 3-D use cylinder or sphere", names[gi], P);
+    PetscCheck(g->angle_range[1] > g->angle_range[0] && g->angle_range[1] - g->angle_range[0] <= 360, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sangle_range: need start < end <= start + 360 (degrees)", P);
     if (g->pressure_surface != PressureSurface::None) {
-      PetscCheck(g->type != GeometryType::Box, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs a disk, cylinder, annulus or sphere", names[gi], P);
-      PetscCheck(has_curve, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs -%spressure_curve NAME", names[gi], P, P);
-      for (size_t c = 0; c < sim.load_curves.size(); ++c)
-        if (sim.load_curves[c].name == curve) g->load_curve = (PetscInt)c;
-      PetscCheck(g->load_curve >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_curve %s is not one of -load_curves", names[gi], P, curve);
+      PetscCheck(g->type != GeometryType::Box, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs a disk, cylinder, annulus or sphere", names[gi], P);
+      PetscCheck(has_curve, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_surface needs -%spressure_curve NAME", names[gi], P, P);
+      for (size_t c = 0; c < mpm.load_curves.size(); ++c)
+        if (mpm.load_curves[c].name == curve) g->load_curve = (PetscInt)c;
+      PetscCheck(g->load_curve >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%spressure_curve %s is not one of -load_curves", names[gi], P, curve);
     }
-    sim.geometries.push_back(std::move(g));
+    mpm.geometries.push_back(std::move(g));
     PetscCall(PetscFree(names[gi]));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -185,9 +184,9 @@ struct SeedPoint {
   PetscInt64 id; // from (global cell, geometry, sub-cell): the same on any number of ranks
 };
 
-PetscErrorCode SeedParticles(Simulation &sim)
+PetscErrorCode SeedParticles(MpmSolver &mpm)
 {
-  const Grid &g   = sim.grid;
+  const Grid &g   = mpm.grid;
   const PetscInt dim = g.dim;
   PetscInt    xs[3], xm[3];
   std::vector<SeedPoint> points;
@@ -199,19 +198,19 @@ PetscErrorCode SeedParticles(Simulation &sim)
   // Particle ids: ((cell * geometries + geometry) * max_sub + sub), independent of the decomposition,
   // so that id-keyed random draws and traced particles are the same on any number of ranks.
   PetscInt max_ppc = 1;
-  for (const auto &geo : sim.geometries) max_ppc = PetscMax(max_ppc, geo->particles_per_cell);
+  for (const auto &geo : mpm.geometries) max_ppc = PetscMax(max_ppc, geo->particles_per_cell);
   const PetscInt64 max_sub = dim == 2 ? (PetscInt64)max_ppc * max_ppc : (PetscInt64)max_ppc * max_ppc * max_ppc;
-  const PetscInt64 ngeom   = (PetscInt64)sim.geometries.size();
+  const PetscInt64 ngeom   = (PetscInt64)mpm.geometries.size();
   {
     // refuse a particle count beyond memory before the points are gathered: first an upper bound
     // (every sub-cell of every geometry), then, only if that does not fit, an estimate from the cell
     // centres (a cell whose centre a geometry contains counts all its sub-cells: one test per cell)
-    const PetscReal per_particle = kMemoryParticleFactor * sim.swarm_bytes;
+    const PetscReal per_particle = kMemoryParticleFactor * mpm.swarm_bytes;
     PetscReal       bound        = 0;
-    for (const auto &geo : sim.geometries) bound += (PetscReal)(ce[0] - xs[0]) * (ce[1] - xs[1]) * (ce[2] - xs[2]) * std::pow((PetscReal)geo->particles_per_cell, (PetscReal)dim);
+    for (const auto &geo : mpm.geometries) bound += (PetscReal)(ce[0] - xs[0]) * (ce[1] - xs[1]) * (ce[2] - xs[2]) * std::pow((PetscReal)geo->particles_per_cell, (PetscReal)dim);
     PetscReal available, most;
-    PetscCall(MemoryAvailablePerRank(sim.comm, &available));
-    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, sim.comm));
+    PetscCall(MemoryAvailablePerRank(mpm.comm, &available));
+    PetscCallMPI(MPI_Allreduce(MPI_IN_PLACE, &bound, 1, MPIU_REAL, MPI_MAX, mpm.comm));
     if (bound * per_particle > available) {
       PetscReal count = 0;
       for (PetscInt k = xs[2]; k < ce[2]; ++k)
@@ -220,21 +219,21 @@ PetscErrorCode SeedParticles(Simulation &sim)
             const PetscInt cell[3] = {i, j, k};
             PetscReal      x[3]    = {0, 0, 0};
             for (PetscInt d = 0; d < dim; ++d) x[d] = g.lower[d] + (cell[d] + 0.5) * g.h[d];
-            for (const auto &geo : sim.geometries)
+            for (const auto &geo : mpm.geometries)
               if (geo->Contains(x)) count += std::pow((PetscReal)geo->particles_per_cell, (PetscReal)dim);
           }
-      PetscCallMPI(MPI_Allreduce(&count, &most, 1, MPIU_REAL, MPI_MAX, sim.comm));
+      PetscCallMPI(MPI_Allreduce(&count, &most, 1, MPIU_REAL, MPI_MAX, mpm.comm));
       char what[128];
       PetscCall(PetscSNPrintf(what, sizeof(what), "Seeding %.3g particles on the fullest rank (%.0f bytes each)", (double)most, (double)per_particle));
-      PetscCall(MemoryCheck(sim.comm, what, count * per_particle, "fewer particles per cell (-<geometry>_particles_per_cell), fewer cells, or more ranks"));
+      PetscCall(MemoryCheck(mpm.comm, what, count * per_particle, "fewer particles per cell (-<geometry>_particles_per_cell), fewer cells, or more ranks"));
     }
   }
   for (PetscInt k = xs[2]; k < ce[2]; ++k)
     for (PetscInt j = xs[1]; j < ce[1]; ++j)
       for (PetscInt i = xs[0]; i < ce[0]; ++i) {
         const PetscInt cell[3] = {i, j, k};
-        for (PetscInt gi = 0; gi < (PetscInt)sim.geometries.size(); ++gi) {
-          const Geometry &geo = *sim.geometries[gi];
+        for (PetscInt gi = 0; gi < (PetscInt)mpm.geometries.size(); ++gi) {
+          const Geometry &geo = *mpm.geometries[gi];
           const PetscInt  ppc = geo.particles_per_cell;
           const PetscInt  nsub = dim == 2 ? ppc * ppc : ppc * ppc * ppc;
           for (PetscInt s = 0; s < nsub; ++s) {
@@ -244,7 +243,7 @@ PetscErrorCode SeedParticles(Simulation &sim)
             for (PetscInt d = 0; d < dim; ++d) pt.x[d] = g.lower[d] + (cell[d] + (sub[d] + 0.5) / ppc) * g.h[d];
             if (!geo.Contains(pt.x)) continue;
             bool claimed = false;
-            for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = sim.geometries[gj]->Contains(pt.x);
+            for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = mpm.geometries[gj]->Contains(pt.x);
             if (claimed) continue;
             pt.geometry = gi;
             const PetscInt64 cell_id = i + (PetscInt64)g.cells[0] * (j + (PetscInt64)g.cells[1] * k);
@@ -256,15 +255,15 @@ PetscErrorCode SeedParticles(Simulation &sim)
 
   const PetscInt n = (PetscInt)points.size();
   PetscInt64     local = n;
-  PetscCallMPI(MPI_Allreduce(&local, &sim.total_particles, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  sim.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first unused id
-  PetscCheck(sim.total_particles > 0, sim.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
-  PetscCall(DMSwarmSetLocalSizes(sim.swarm, n, 16));
+  PetscCallMPI(MPI_Allreduce(&local, &mpm.total_particles, 1, MPIU_INT64, MPI_SUM, mpm.comm));
+  mpm.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first unused id
+  PetscCheck(mpm.total_particles > 0, mpm.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
+  PetscCall(DMSwarmSetLocalSizes(mpm.swarm, n, 16));
 
   PetscReal *x, *v, *mass, *vol, *vol0, *X0, *hw, *F, *sigma, *L, *T, *c, *e, *fext, *area;
   PetscInt  *mat, *curve, *cell;
   PetscInt64 *pid;
-  SwarmAccess fields(sim.swarm);
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
   PetscCall(fields.Get(DMSwarmField_pid, &pid));
@@ -289,19 +288,19 @@ PetscErrorCode SeedParticles(Simulation &sim)
   PetscCall(fields.Get(field::bulk_viscosity, &q));
   PetscCall(fields.Get(field::fragment, &fragment));
   PetscReal *ambient = nullptr, *affine = nullptr;
-  if (sim.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
-  if (sim.transfer == Transfer::APIC) PetscCall(fields.Get(field::affine, &affine));
+  if (mpm.ambient_pressure) PetscCall(fields.Get(field::ambient_pressure, &ambient));
+  if (mpm.transfer == Transfer::APIC) PetscCall(fields.Get(field::affine, &affine));
   for (PetscInt p = 0; p < n; ++p) {
-    const Geometry &geo = *sim.geometries[points[p].geometry];
+    const Geometry &geo = *mpm.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
     // axisymmetric: per radian, the sub-cell's area times its radius
-    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (sim.axisymmetric ? points[p].x[0] : 1.0);
+    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (mpm.axisymmetric ? points[p].x[0] : 1.0);
     PetscReal       r_hat[3], r;
     geo.RadialDirection(points[p].x, r_hat, &r);
     pid[p]   = points[p].id;
     cell[p]  = -1;
     mat[p]   = geo.material;
-    mass[p]  = sim.materials[geo.material]->Density() * sub_volume;
+    mass[p]  = mpm.materials[geo.material]->Density() * sub_volume;
     vol[p]   = sub_volume;
     vol0[p]  = sub_volume;
     T[p]     = geo.temperature;
@@ -347,12 +346,12 @@ PetscErrorCode SeedParticles(Simulation &sim)
   {
     MaterialPointFields f;
     MaterialState       state;
-    SwarmAccess         views(sim.swarm);
-    PetscCall(GetMaterialPointFields(views, sim.swarm, state, f));
-    for (auto &m : sim.materials) PetscCall(m->InitializeState(f, 0, n));
+    SwarmAccess         views(mpm.swarm);
+    PetscCall(GetMaterialPointFields(views, mpm.swarm, state, f));
+    for (auto &m : mpm.materials) PetscCall(m->InitializeState(f, 0, n));
     PetscCall(views.RestoreAll());
   }
-  PetscCall(PetscInfo(sim.swarm, "Seeded %" PetscInt_FMT " particles on this rank, %" PetscInt64_FMT " in all\n", n, sim.total_particles));
+  PetscCall(PetscInfo(mpm.swarm, "Seeded %" PetscInt_FMT " particles on this rank, %" PetscInt64_FMT " in all\n", n, mpm.total_particles));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

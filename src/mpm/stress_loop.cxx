@@ -1,30 +1,30 @@
 // The constitutive call: each material updates the stress of its own particles in one flat loop
 // (models/). F and V were updated with L in the G2P pass (g2p.cxx).
-#include "../simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "mpm/material_state.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
 namespace burst {
 
-PetscErrorCode UpdateStress(Simulation &sim)
+PetscErrorCode UpdateStress(MpmSolver &mpm)
 {
   MaterialPointFields f;
   MaterialState       state;
-  SwarmAccess         fields(sim.swarm);
+  SwarmAccess         fields(mpm.swarm);
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_stress, 0, 0, 0, 0));
-  PetscCall(GetMaterialPointFields(fields, sim.swarm, state, f));
-  f.time = sim.time + sim.dt;
-  for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) PetscCall(sim.materials[id]->UpdateStress(f, id, sim.dt));
-  if (sim.viscosity[0] > 0 || sim.viscosity[1] > 0) {
+  PetscCall(PetscLogEventBegin(mpm.ev_stress, 0, 0, 0, 0));
+  PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
+  f.time = mpm.time + mpm.dt;
+  for (PetscInt id = 0; id < (PetscInt)mpm.materials.size(); ++id) PetscCall(mpm.materials[id]->UpdateStress(f, id, mpm.dt));
+  if (mpm.viscosity[0] > 0 || mpm.viscosity[1] > 0) {
     // Artificial bulk viscosity (models.md 5.5; von Neumann-Richtmyer with a linear term): acts in
     // compression only, enters the internal force as -q I (p2g.cxx), and its work is dissipated:
     // added to the internal energy so the balance closes.
     PetscReal *q;
     PetscCall(fields.Get(field::bulk_viscosity, &q));
     PetscReal dx = 0;
-    for (PetscInt d = 0; d < sim.grid.dim; ++d) dx += sim.grid.h[d] / sim.grid.dim;
+    for (PetscInt d = 0; d < mpm.grid.dim; ++d) dx += mpm.grid.h[d] / mpm.grid.dim;
     for (PetscInt p = 0; p < f.n; ++p) {
       const PetscReal *L = f.L + 9 * p, trace_D = L[0] + L[4] + L[8];
       if (trace_D >= 0) {
@@ -32,45 +32,45 @@ PetscErrorCode UpdateStress(Simulation &sim)
         continue;
       }
       const PetscReal rho = f.mass[p] / f.volume[p];
-      q[p]                = rho * (sim.viscosity[0] * f.wave_speed[p] * -trace_D * dx + sim.viscosity[1] * trace_D * trace_D * dx * dx);
-      f.internal_energy[p] += -q[p] * trace_D * f.volume[p] * sim.dt;
-      sim.diag.viscous_work += -q[p] * trace_D * f.volume[p] * sim.dt;
+      q[p]                = rho * (mpm.viscosity[0] * f.wave_speed[p] * -trace_D * dx + mpm.viscosity[1] * trace_D * trace_D * dx * dx);
+      f.internal_energy[p] += -q[p] * trace_D * f.volume[p] * mpm.dt;
+      mpm.diag.viscous_work += -q[p] * trace_D * f.volume[p] * mpm.dt;
     }
   }
   PetscCall(fields.RestoreAll());
-  PetscCall(PetscLogEventEnd(sim.ev_stress, 0, 0, 0, 0));
-  PetscCall(CheckParticleState(sim, "stress update"));
+  PetscCall(PetscLogEventEnd(mpm.ev_stress, 0, 0, 0, 0));
+  PetscCall(CheckParticleState(mpm, "stress update"));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Initial stress (hyperelastic models compute it from F; hypoelastic keep zero) and wave speeds.
-PetscErrorCode ComputeInitialWaveSpeed(Simulation &sim)
+PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm)
 {
   MaterialPointFields f;
   MaterialState       state;
-  SwarmAccess         fields(sim.swarm);
+  SwarmAccess         fields(mpm.swarm);
   PetscFunctionBeginUser;
-  PetscCall(GetMaterialPointFields(fields, sim.swarm, state, f));
-  f.time = sim.time;
-  for (PetscInt id = 0; id < (PetscInt)sim.materials.size(); ++id) {
-    PetscCall(sim.materials[id]->UpdateStress(f, id, 0.0));
-    PetscCall(sim.materials[id]->ComputeWaveSpeed(f, id));
+  PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
+  f.time = mpm.time;
+  for (PetscInt id = 0; id < (PetscInt)mpm.materials.size(); ++id) {
+    PetscCall(mpm.materials[id]->UpdateStress(f, id, 0.0));
+    PetscCall(mpm.materials[id]->ComputeWaveSpeed(f, id));
   }
   PetscCall(fields.RestoreAll());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Stops the run on a NaN or non-positive density, naming the phase, step, particle and field.
-PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
+PetscErrorCode CheckParticleState(MpmSolver &mpm, const char phase[])
 {
-  PetscInt         n, dim = sim.grid.dim, bad = -1;
+  PetscInt         n, dim = mpm.grid.dim, bad = -1;
   const PetscReal *x, *v, *sigma, *vol, *m;
   const PetscInt64 *pid;
   const char      *what = "";
   PetscInt64       bad_pid = -1;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::stress, &sigma));
@@ -92,15 +92,10 @@ PetscErrorCode CheckParticleState(Simulation &sim, const char phase[])
   if (bad >= 0) bad_pid = pid[bad];
   PetscCall(fields.RestoreAll());
   PetscMPIInt local_bad = bad >= 0, any_bad = 0;
-  PetscCallMPI(MPI_Allreduce(&local_bad, &any_bad, 1, MPI_INT, MPI_MAX, sim.comm));
-  if (local_bad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] after %s, step %" PetscInt_FMT ", t = %g s: particle id %" PetscInt64_FMT ": %s\n", sim.rank, phase, sim.step, (double)sim.time, bad_pid, what));
-  if (any_bad && sim.step > 0) { // a last snapshot (in particles.xmf) that shows where; the folder exists after seeding
-    sim.step += 1; // named after the step that failed, not over the last good output
-    PetscCall(WriteOutput(sim));
-    sim.step -= 1;
-    PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output.dir.c_str(), (int)sim.step + 1));
-  }
-  PetscCheck(!any_bad, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": invalid particle state after %s (see the line above: step, particle id and field); reduce -mpm_cfl or check the material parameters", sim.step, phase);
+  PetscCallMPI(MPI_Allreduce(&local_bad, &any_bad, 1, MPI_INT, MPI_MAX, mpm.comm));
+  if (local_bad) PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] after %s, step %" PetscInt_FMT ", t = %g s: particle id %" PetscInt64_FMT ": %s\n", mpm.rank, phase, mpm.step, (double)mpm.time, bad_pid, what));
+  if (any_bad && mpm.step > 0 && mpm.write_snapshot) PetscCall(mpm.write_snapshot(mpm.step + 1)); // named after the step that failed, not over the last good output
+  PetscCheck(!any_bad, mpm.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": invalid particle state after %s (see the line above: step, particle id and field); reduce -mpm_cfl or check the material parameters", mpm.step, phase);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

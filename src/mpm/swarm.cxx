@@ -1,7 +1,7 @@
 // Material points: a DMSWARM_BASIC swarm whose owner ranks burst computes from the node DMDA's
 // ownership ranges (petsc.md 3, 4.1-4.2). BASIC migration sends each point straight to its owner at
 // any distance, so nothing is lost silently; burst still compares the global count before and after.
-#include "simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "mpm/material_state.hpp"
 #include "util.hpp"
 #include <cmath>
@@ -9,52 +9,52 @@
 
 namespace burst {
 
-PetscErrorCode CreateSwarm(Simulation &sim)
+PetscErrorCode CreateSwarm(MpmSolver &mpm)
 {
-  const PetscInt dim = sim.grid.dim;
+  const PetscInt dim = mpm.grid.dim;
   DM             sw;
   PetscFunctionBeginUser;
-  PetscCall(DMCreate(sim.comm, &sw));
+  PetscCall(DMCreate(mpm.comm, &sw));
   PetscCall(PetscObjectSetOptionsPrefix((PetscObject)sw, "swarm_"));
   PetscCall(DMSetType(sw, DMSWARM));
   PetscCall(DMSetDimension(sw, dim));
   PetscCall(DMSwarmSetType(sw, DMSWARM_BASIC));
-  sim.swarm_bytes = (PetscInt)(sizeof(PetscInt64) + sizeof(PetscInt)); // DMSwarm_pid and DMSwarm_rank, registered by PETSc
+  mpm.swarm_bytes = (PetscInt)(sizeof(PetscInt64) + sizeof(PetscInt)); // DMSwarm_pid and DMSwarm_rank, registered by PETSc
   // Coordinates and cell id first, under the PIC names, as DMSwarm's own viewers expect.
-  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_coor, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_cellid, 1, PETSC_INT, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::velocity, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::mass, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::volume, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::volume0, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::position0, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::half_width0, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::F, 9, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::stress, 9, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::L, 9, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::temperature, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::wave_speed, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::internal_energy, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::external_force, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::traction_area0, dim, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::load_curve, 1, PETSC_INT, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::material, 1, PETSC_INT, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::bulk_viscosity, 1, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &sim.swarm_bytes));
-  if (sim.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &sim.swarm_bytes));
-  if (sim.phases.Enabled())
-    for (const char *name : {field::surface_heat, field::surface_temperature_time, field::surface_conductance, field::reacted_fraction}) PetscCall(RegisterSwarmField(sw, name, 1, PETSC_REAL, &sim.swarm_bytes));
-  if (sim.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &sim.swarm_bytes));
-  PetscCall(RegisterMaterialState(sw, sim.materials, &sim.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_coor, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, DMSwarmPICField_cellid, 1, PETSC_INT, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::velocity, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::mass, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::volume, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::volume0, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::position0, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::half_width0, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::F, 9, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::stress, 9, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::L, 9, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::temperature, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::wave_speed, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::internal_energy, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::external_force, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::traction_area0, dim, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::load_curve, 1, PETSC_INT, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::material, 1, PETSC_INT, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::bulk_viscosity, 1, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterSwarmField(sw, field::fragment, 1, PETSC_INT, &mpm.swarm_bytes));
+  if (mpm.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &mpm.swarm_bytes));
+  if (mpm.surface_heat_fields)
+    for (const char *name : {field::surface_heat, field::surface_temperature_time, field::surface_conductance, field::reacted_fraction}) PetscCall(RegisterSwarmField(sw, name, 1, PETSC_REAL, &mpm.swarm_bytes));
+  if (mpm.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &mpm.swarm_bytes));
+  PetscCall(RegisterMaterialState(sw, mpm.materials, &mpm.swarm_bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
-  PetscOptionsBegin(sim.comm, "", "Particle order", "Swarm");
-  PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", sim.sort_interval, &sim.sort_interval, nullptr));
+  PetscOptionsBegin(mpm.comm, "", "Particle order", "Swarm");
+  PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", mpm.sort_interval, &mpm.sort_interval, nullptr));
   PetscOptionsEnd();
-  PetscCheck(sim.sort_interval >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_sort_interval = %" PetscInt_FMT " is out of range: it must be >= 0", sim.sort_interval);
-  if (!sim.ev_sort) PetscCall(PetscLogEventRegister("MPM_Sort", DM_CLASSID, &sim.ev_sort));
+  PetscCheck(mpm.sort_interval >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -mpm_sort_interval = %" PetscInt_FMT " is out of range: it must be >= 0", mpm.sort_interval);
+  if (!mpm.ev_sort) PetscCall(PetscLogEventRegister("MPM_Sort", DM_CLASSID, &mpm.ev_sort));
   // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).
   PetscCall(DMSwarmSetLocalSizes(sw, 0, 16));
-  sim.swarm = sw;
+  mpm.swarm = sw;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -74,15 +74,15 @@ static inline PetscInt FindSlot(const std::vector<PetscInt> &start, PetscInt i)
 // domain get rank -1 and are counted in num_outside; num_leaving (if given) counts those owned by
 // another rank. On one rank, when the caller needs no cell ids (no sort this step), only the inside
 // test runs: every rank is 0 and the cell ids keep older values.
-PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool need_cells, PetscInt *num_leaving)
+PetscErrorCode ComputeOwnerRanks(MpmSolver &mpm, PetscInt *num_outside, bool need_cells, PetscInt *num_leaving)
 {
-  const Grid &g = sim.grid;
+  const Grid &g = mpm.grid;
   PetscInt    n, outside = 0, leaving = 0;
   PetscReal  *x;
   PetscInt   *rank, *cell;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(DMSwarmField_rank, &rank));
   PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
@@ -91,7 +91,7 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
   const PetscInt  dim = g.dim, cells[3] = {g.cells[0], g.cells[1], g.cells[2]}, procs[2] = {g.procs[0], g.procs[1]};
   const PetscReal lower[3] = {g.lower[0], g.lower[1], g.lower[2]}, upper[3] = {g.upper[0], g.upper[1], g.upper[2]}, h[3] = {g.h[0], g.h[1], g.h[2]};
   const bool      one_slot[3] = {g.start[0].size() <= 2, g.start[1].size() <= 2, dim < 3 || g.start[2].size() <= 2};
-  if (sim.size == 1 && !need_cells) {
+  if (mpm.size == 1 && !need_cells) {
     for (PetscInt p = 0; p < n; ++p) {
       bool inside = true;
       for (PetscInt d = 0; d < dim; ++d) {
@@ -126,7 +126,7 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
     }
     rank[p] = slot[0] + procs[0] * (slot[1] + procs[1] * slot[2]);
     cell[p] = c[0] + cells[0] * (c[1] + cells[1] * c[2]);
-    leaving += rank[p] != sim.rank;
+    leaving += rank[p] != mpm.rank;
   }
   PetscCall(fields.RestoreAll());
   *num_outside = outside;
@@ -136,18 +136,18 @@ PetscErrorCode ComputeOwnerRanks(Simulation &sim, PetscInt *num_outside, bool ne
 
 // Removes the flagged particles by compaction (petsc.md 4.3), adding their mass and energy to the
 // diagnostics and updating the global count.
-PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove, PetscInt64 *removed)
+PetscErrorCode RemoveParticles(MpmSolver &mpm, const std::vector<char> &remove, PetscInt64 *removed)
 {
-  PetscInt   n, dim = sim.grid.dim;
+  PetscInt   n, dim = mpm.grid.dim;
   PetscReal *mass, *v, *energy;
   PetscInt64 local = 0;
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
   std::vector<PetscInt> survivors;
   bool                  any = false; // (burning calls this every step; most steps remove nothing)
   for (PetscInt p = 0; p < n && !any; ++p) any = remove[p];
   if (any) {
-    SwarmAccess fields(sim.swarm);
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(field::mass, &mass));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::internal_energy, &energy));
@@ -158,88 +158,88 @@ PetscErrorCode RemoveParticles(Simulation &sim, const std::vector<char> &remove,
       }
       PetscReal v2 = 0;
       for (PetscInt d = 0; d < dim; ++d) v2 += v[p * dim + d] * v[p * dim + d];
-      sim.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
-      sim.diag.removed_mass += mass[p];
-      for (PetscInt d = 0; d < dim; ++d) sim.diag.removed_momentum[d] += mass[p] * v[p * dim + d];
-      sim.diag.removed_particles++;
+      mpm.diag.removed_energy += 0.5 * mass[p] * v2 + energy[p];
+      mpm.diag.removed_mass += mass[p];
+      for (PetscInt d = 0; d < dim; ++d) mpm.diag.removed_momentum[d] += mass[p] * v[p * dim + d];
+      mpm.diag.removed_particles++;
       ++local;
     }
     PetscCall(fields.RestoreAll());
-    sim.stencil_cache.Invalidate(); // the particles are renumbered
+    mpm.stencil_cache.Invalidate(); // the particles are renumbered
     const PetscInt keep = (PetscInt)survivors.size();
     for (PetscInt k = 0; k < keep; ++k)
-      if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(sim.swarm, survivors[k], k));
-    PetscCall(DMSwarmSetLocalSizes(sim.swarm, keep, -1));
+      if (survivors[k] != k) PetscCall(DMSwarmCopyPoint(mpm.swarm, survivors[k], k));
+    PetscCall(DMSwarmSetLocalSizes(mpm.swarm, keep, -1));
   }
-  PetscCallMPI(MPI_Allreduce(&local, removed, 1, MPIU_INT64, MPI_SUM, sim.comm));
-  sim.total_particles -= *removed;
+  PetscCallMPI(MPI_Allreduce(&local, removed, 1, MPIU_INT64, MPI_SUM, mpm.comm));
+  mpm.total_particles -= *removed;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode MigrateParticles(Simulation &sim)
+PetscErrorCode MigrateParticles(MpmSolver &mpm)
 {
   PetscInt   outside = 0, leaving = 0, n;
   PetscInt64 global_outside = 0, removed_before = 0, count = 0, local;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_migrate, 0, 0, 0, 0));
-  sim.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
-  const bool sort    = sim.sort_interval > 0 && (sim.step + 1) % sim.sort_interval == 0;
-  const bool balance = sim.grid.balance && sim.size > 1 && (sim.grid.balanced_at < 0 || (sim.grid.balance_interval > 0 && (sim.step + 1) % sim.grid.balance_interval == 0));
-  PetscCall(ComputeOwnerRanks(sim, &outside, sort || balance, &leaving));
+  PetscCall(PetscLogEventBegin(mpm.ev_migrate, 0, 0, 0, 0));
+  mpm.stencil_cache.Invalidate(); // arrivals, departures and possibly new ghost ranges
+  const bool sort    = mpm.sort_interval > 0 && (mpm.step + 1) % mpm.sort_interval == 0;
+  const bool balance = mpm.grid.balance && mpm.size > 1 && (mpm.grid.balanced_at < 0 || (mpm.grid.balance_interval > 0 && (mpm.step + 1) % mpm.grid.balance_interval == 0));
+  PetscCall(ComputeOwnerRanks(mpm, &outside, sort || balance, &leaving));
   if (balance) {
     PetscBool changed;
-    PetscCall(BalanceGrid(sim, &changed)); // new ownership ranges from the particle work (grid.cxx)
-    sim.grid.balanced_at = sim.step;
-    if (changed) PetscCall(ComputeOwnerRanks(sim, &outside, true, &leaving));
+    PetscCall(BalanceGrid(mpm, &changed)); // new ownership ranges from the particle work (grid.cxx)
+    mpm.grid.balanced_at = mpm.step;
+    if (changed) PetscCall(ComputeOwnerRanks(mpm, &outside, true, &leaving));
   }
   // particles that left the domain and particles that change rank, in one reduction
   const PetscInt64 local_counts[2] = {outside, leaving};
   PetscInt64       global_counts[2];
-  PetscCallMPI(MPI_Allreduce(local_counts, global_counts, 2, MPIU_INT64, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(local_counts, global_counts, 2, MPIU_INT64, MPI_SUM, mpm.comm));
   global_outside = global_counts[0];
   if (global_outside) {
-    if (sim.outside == OutsidePolicy::Error) {
+    if (mpm.outside == OutsidePolicy::Error) {
       PetscInt   np;
       PetscReal *x;
       PetscInt  *rank;
-      PetscCall(DMSwarmGetLocalSize(sim.swarm, &np));
-      SwarmAccess fields(sim.swarm);
+      PetscCall(DMSwarmGetLocalSize(mpm.swarm, &np));
+      SwarmAccess fields(mpm.swarm);
       PetscCall(fields.Get(DMSwarmPICField_coor, &x));
       PetscCall(fields.Get(DMSwarmField_rank, &rank));
       for (PetscInt p = 0; p < np; ++p)
         if (rank[p] < 0) {
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", sim.rank, sim.step, p, (double)x[p * sim.grid.dim], (double)x[p * sim.grid.dim + 1], sim.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", mpm.rank, mpm.step, p, (double)x[p * mpm.grid.dim], (double)x[p * mpm.grid.dim + 1], mpm.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
           break;
         }
       PetscCall(fields.RestoreAll());
-      SETERRQ(sim.comm, PETSC_ERR_USER, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " particle(s) left the domain (-mpm_outside_domain error); enlarge -grid_lower/-grid_upper or use -mpm_outside_domain remove", sim.step, global_outside);
+      SETERRQ(mpm.comm, PETSC_ERR_USER, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " particle(s) left the domain (-mpm_outside_domain error); enlarge -grid_lower/-grid_upper or use -mpm_outside_domain remove", mpm.step, global_outside);
     }
-    removed_before = sim.diag.removed_particles;
+    removed_before = mpm.diag.removed_particles;
     {
       PetscInt        np;
       const PetscInt *rank;
-      PetscCall(DMSwarmGetLocalSize(sim.swarm, &np));
+      PetscCall(DMSwarmGetLocalSize(mpm.swarm, &np));
       std::vector<char> remove(np);
-      SwarmAccess       fields(sim.swarm);
+      SwarmAccess       fields(mpm.swarm);
       PetscCall(fields.Get(DMSwarmField_rank, &rank));
       for (PetscInt p = 0; p < np; ++p) remove[p] = rank[p] < 0;
       PetscCall(fields.RestoreAll());
       PetscInt64 removed;
-      PetscCall(RemoveParticles(sim, remove, &removed));
+      PetscCall(RemoveParticles(mpm, remove, &removed));
     }
-    PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", sim.step, sim.diag.removed_particles - (PetscInt)removed_before));
+    PetscCall(PetscInfo(mpm.swarm, "Step %" PetscInt_FMT ": removed %" PetscInt_FMT " particles that left the domain on this rank\n", mpm.step, mpm.diag.removed_particles - (PetscInt)removed_before));
   }
   // DMSwarmMigrate only when a particle changes rank: a step moves particles a fraction of a cell, so
   // most steps none crosses a rank boundary, and the migration's collectives (about ten) are spared
   if (global_counts[1] > 0) {
-    PetscCall(DMSwarmMigrate(sim.swarm, PETSC_TRUE));
-    PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+    PetscCall(DMSwarmMigrate(mpm.swarm, PETSC_TRUE));
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     local = n;
-    PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, sim.comm));
-    PetscCheck(count == sim.total_particles, sim.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, sim.step, sim.total_particles, count);
+    PetscCallMPI(MPI_Allreduce(&local, &count, 1, MPIU_INT64, MPI_SUM, mpm.comm));
+    PetscCheck(count == mpm.total_particles, mpm.comm, PETSC_ERR_PLIB, "Step %" PetscInt_FMT ": migration changed the particle count from %" PetscInt64_FMT " to %" PetscInt64_FMT, mpm.step, mpm.total_particles, count);
   }
-  PetscCall(PetscLogEventEnd(sim.ev_migrate, 0, 0, 0, 0));
-  if (sort) PetscCall(SortParticlesByCell(sim));
+  PetscCall(PetscLogEventEnd(mpm.ev_migrate, 0, 0, 0, 0));
+  if (sort) PetscCall(SortParticlesByCell(mpm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -255,18 +255,18 @@ static inline void Gather(const char *src, char *dst, const std::vector<PetscInt
 // order, so after a while neighbouring particles in memory touch nodes far apart; sorted, the
 // transfers (P2G, G2P) walk the nodal arrays nearly in order. Cost: one gather and copy of every
 // field (the swarm's bytes per particle, twice), about one streaming pass of a step.
-PetscErrorCode SortParticlesByCell(Simulation &sim)
+PetscErrorCode SortParticlesByCell(MpmSolver &mpm)
 {
   PetscInt                  n;
   std::vector<std::string> *names;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_sort, 0, 0, 0, 0));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
+  PetscCall(PetscLogEventBegin(mpm.ev_sort, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
   std::vector<PetscInt> order(n);
   bool                  sorted = true;
   {
     const PetscInt *cell;
-    SwarmAccess     fields(sim.swarm);
+    SwarmAccess     fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
     PetscInt lo = PETSC_MAX_INT, hi = -1;
     for (PetscInt p = 0; p < n; ++p) {
@@ -283,8 +283,8 @@ PetscErrorCode SortParticlesByCell(Simulation &sim)
     PetscCall(fields.RestoreAll());
   }
   if (!sorted) {
-    sim.stencil_cache.Invalidate();
-    PetscCall(SwarmFieldNames(sim.swarm, &names));
+    mpm.stencil_cache.Invalidate();
+    PetscCall(SwarmFieldNames(mpm.swarm, &names));
     std::vector<std::string> all = {DMSwarmField_pid, DMSwarmField_rank};
     all.insert(all.end(), names->begin(), names->end());
     std::vector<char> buffer;
@@ -293,7 +293,7 @@ PetscErrorCode SortParticlesByCell(Simulation &sim)
       PetscDataType type;
       void         *data;
       size_t        size;
-      PetscCall(DMSwarmGetField(sim.swarm, name.c_str(), &bs, &type, &data));
+      PetscCall(DMSwarmGetField(mpm.swarm, name.c_str(), &bs, &type, &data));
       PetscCall(PetscDataTypeGetSize(type, &size));
       const size_t bytes = size * (size_t)bs;
       buffer.resize(bytes * (size_t)n);
@@ -309,10 +309,10 @@ PetscErrorCode SortParticlesByCell(Simulation &sim)
         for (PetscInt p = 0; p < n; ++p) std::memcpy(dst + bytes * p, src + bytes * order[p], bytes);
       }
       std::memcpy(src, dst, bytes * (size_t)n);
-      PetscCall(DMSwarmRestoreField(sim.swarm, name.c_str(), &bs, &type, &data));
+      PetscCall(DMSwarmRestoreField(mpm.swarm, name.c_str(), &bs, &type, &data));
     }
   }
-  PetscCall(PetscLogEventEnd(sim.ev_sort, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(mpm.ev_sort, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -1,7 +1,6 @@
 // Time step and external forces.
-#include "../simulation.hpp"
+#include "mpm/mpm.hpp"
 #include "mpm/swarm_access.hpp"
-#include "scenes/analytic.hpp"
 #include "../../models/elastic/tensor.hpp"
 #include <cmath>
 
@@ -9,24 +8,24 @@ namespace burst {
 
 // dt = cfl min_p min_d h_d / (c_p + |v_p,d|), reduced over ranks; capped by -mpm_dt_max and so that
 // the last step ends at -final_time. -mpm_dt fixes it instead.
-PetscErrorCode ComputeTimeStep(Simulation &sim)
+PetscErrorCode ComputeTimeStep(MpmSolver &mpm, PetscReal final_time)
 {
-  PetscInt         n, dim = sim.grid.dim;
+  PetscInt         n, dim = mpm.grid.dim;
   const PetscReal *v, *c;
   PetscReal        local = PETSC_MAX_REAL, global;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.ev_dt, 0, 0, 0, 0));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(PetscLogEventBegin(mpm.ev_dt, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(field::velocity, &v));
   PetscCall(fields.Get(field::wave_speed, &c));
   PetscInt limit = -1; // the particle that sets the step (-info)
   for (PetscInt p = 0; p < n; ++p)
     for (PetscInt d = 0; d < dim; ++d) {
-      const PetscReal bound = sim.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300);
+      const PetscReal bound = mpm.grid.h[d] / (c[p] + std::fabs(v[dim * p + d]) + 1e-300);
       if (bound < local) local = bound, limit = p;
     }
-  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&local, &global, 1, MPIU_REAL, MPI_MIN, mpm.comm));
   PetscBool info = PETSC_FALSE;
   PetscCall(PetscInfoEnabled(DM_CLASSID, &info)); // the limiting particle is looked up only for -info
   if (info && limit >= 0 && local == global) {
@@ -36,48 +35,48 @@ PetscErrorCode ComputeTimeStep(Simulation &sim)
     PetscCall(fields.Get(field::material, &material));
     PetscReal speed = 0;
     for (PetscInt d = 0; d < dim; ++d) speed = PetscMax(speed, std::fabs(v[dim * limit + d]));
-    PetscCall(PetscInfo(sim.swarm, "Step %" PetscInt_FMT ": dt set by particle id %" PetscInt64_FMT " (%s): wave speed %g m/s, speed %g m/s\n", sim.step, pid[limit], sim.materials[material[limit]]->Name(), (double)c[limit], (double)speed));
+    PetscCall(PetscInfo(mpm.swarm, "Step %" PetscInt_FMT ": dt set by particle id %" PetscInt64_FMT " (%s): wave speed %g m/s, speed %g m/s\n", mpm.step, pid[limit], mpm.materials[material[limit]]->Name(), (double)c[limit], (double)speed));
   }
   PetscCall(fields.RestoreAll());
   static PetscInt warned_step = -1; // a fixed step beyond the stable one is said once per run, when first seen
-  if (sim.dt_fixed > global && warned_step < 0) {
-    warned_step = sim.step;
-    PetscCall(PetscPrintf(sim.comm, "Warning: -mpm_dt = %g s is %.3g times the particles' stable step min h/(c + |v|) = %g s at step %" PetscInt_FMT " (Courant number above 1): the solids' update is unstable; give -mpm_dt 0 for the CFL rule (-mpm_cfl %g)\n", (double)sim.dt_fixed, (double)(sim.dt_fixed / global), (double)global, sim.step, (double)sim.cfl));
+  if (mpm.dt_fixed > global && warned_step < 0) {
+    warned_step = mpm.step;
+    PetscCall(PetscPrintf(mpm.comm, "Warning: -mpm_dt = %g s is %.3g times the particles' stable step min h/(c + |v|) = %g s at step %" PetscInt_FMT " (Courant number above 1): the solids' update is unstable; give -mpm_dt 0 for the CFL rule (-mpm_cfl %g)\n", (double)mpm.dt_fixed, (double)(mpm.dt_fixed / global), (double)global, mpm.step, (double)mpm.cfl));
   }
-  sim.dt = sim.dt_fixed > 0 ? sim.dt_fixed : PetscMin(sim.cfl * global, sim.dt_max);
-  PetscCheck(sim.dt > 0 && std::isfinite(sim.dt), sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", sim.step, (double)sim.dt);
-  const PetscReal remaining = sim.run.final_time - sim.time;
-  if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining; // end exactly at the final time
-  PetscCall(PetscLogEventEnd(sim.ev_dt, 0, 0, 0, 0));
+  mpm.dt = mpm.dt_fixed > 0 ? mpm.dt_fixed : PetscMin(mpm.cfl * global, mpm.dt_max);
+  PetscCheck(mpm.dt > 0 && std::isfinite(mpm.dt), mpm.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", mpm.step, (double)mpm.dt);
+  const PetscReal remaining = final_time - mpm.time;
+  if (mpm.dt > remaining || remaining - mpm.dt < 1e-6 * mpm.dt) mpm.dt = remaining; // end exactly at the final time
+  PetscCall(PetscLogEventEnd(mpm.ev_dt, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Whether any particle can carry an external force: without a load the field stays zero (seeding
 // zeroes it), and the transfers leave its terms out.
-bool HasExternalForces(const Simulation &sim)
+bool HasExternalForces(const MpmSolver &mpm)
 {
-  const bool body    = sim.analytic && sim.analytic->HasBodyForce();
-  const bool gravity = sim.gravity[0] != 0 || sim.gravity[1] != 0 || sim.gravity[2] != 0;
-  return body || gravity || !sim.load_curves.empty();
+  const bool body    = static_cast<bool>(mpm.body_force);
+  const bool gravity = mpm.gravity[0] != 0 || mpm.gravity[1] != 0 || mpm.gravity[2] != 0;
+  return body || gravity || !mpm.load_curves.empty();
 }
 
 // External force per particle at t_n: gravity, the body force of an analytic solution, and the
 // pressure of a load curve on surface particles, with the area vector carried by Nanson's formula
 // n da = J F^{-T} N dA.
-PetscErrorCode ComputeExternalForces(Simulation &sim)
+PetscErrorCode ComputeExternalForces(MpmSolver &mpm)
 {
-  PetscInt         n, dim = sim.grid.dim;
+  PetscInt         n, dim = mpm.grid.dim;
   PetscReal       *fext;
   const PetscReal *m, *area0, *F, *X0;
   const PetscInt  *curve;
-  std::vector<PetscReal> pressure(sim.load_curves.size());
+  std::vector<PetscReal> pressure(mpm.load_curves.size());
   PetscFunctionBeginUser;
-  for (size_t c = 0; c < sim.load_curves.size(); ++c) pressure[c] = sim.load_curves[c].Evaluate(sim.time);
-  if (!HasExternalForces(sim)) PetscFunctionReturn(PETSC_SUCCESS); // the field stays zero: skip the pass
-  const bool body = sim.analytic && sim.analytic->HasBodyForce();
-  PetscCall(PetscLogEventBegin(sim.ev_loads, 0, 0, 0, 0));
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  for (size_t c = 0; c < mpm.load_curves.size(); ++c) pressure[c] = mpm.load_curves[c].Evaluate(mpm.time);
+  if (!HasExternalForces(mpm)) PetscFunctionReturn(PETSC_SUCCESS); // the field stays zero: skip the pass
+  const bool body = static_cast<bool>(mpm.body_force);
+  PetscCall(PetscLogEventBegin(mpm.ev_loads, 0, 0, 0, 0));
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(field::external_force, &fext));
   PetscCall(fields.Get(field::mass, &m));
   PetscCall(fields.Get(field::traction_area0, &area0));
@@ -89,9 +88,9 @@ PetscErrorCode ComputeExternalForces(Simulation &sim)
     if (body) {
       PetscReal X[3] = {0, 0, 0};
       for (PetscInt d = 0; d < dim; ++d) X[d] = X0[dim * p + d];
-      sim.analytic->BodyForce(X, sim.time, b);
+      mpm.body_force(X, mpm.time, b);
     }
-    for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] = m[p] * (sim.gravity[d] + b[d]);
+    for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] = m[p] * (mpm.gravity[d] + b[d]);
     if (curve[p] >= 0) {
       Mat3CMap                 Fp(F + 9 * p);
       Eigen::Matrix<PetscReal, 3, 1> N0 = Eigen::Matrix<PetscReal, 3, 1>::Zero();
@@ -101,7 +100,7 @@ PetscErrorCode ComputeExternalForces(Simulation &sim)
     }
   }
   PetscCall(fields.RestoreAll());
-  PetscCall(PetscLogEventEnd(sim.ev_loads, 0, 0, 0, 0));
+  PetscCall(PetscLogEventEnd(mpm.ev_loads, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -175,12 +175,12 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
   PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25; heat_sine/heat_cosine: bar length L (m, the bar is [0, L] in x), default 1", "", length, &length, nullptr));
   PetscCall(PetscOptionsReal("-analytic_temperature", "heat_sine/heat_cosine: base temperature T0 (K), > 0 (heat_sine: give the same to -mpm_heat_bc_xmin/xmax)", "", T0, &T0, nullptr));
   PetscOptionsEnd();
-  if (type == 0 || sim.materials.empty()) PetscFunctionReturn(PETSC_SUCCESS);
+  if (type == 0 || sim.mpm.materials.empty()) PetscFunctionReturn(PETSC_SUCCESS);
 
-  const Material *m = sim.materials[0].get();
+  const Material *m = sim.mpm.materials[0].get();
   if (has_material) {
     m = nullptr;
-    for (auto &mm : sim.materials)
+    for (auto &mm : sim.mpm.materials)
       if (mm->name_ == material) m = mm.get();
     PetscCheck(m, sim.comm, PETSC_ERR_USER_INPUT, "Option -analytic_material %s is not one of -materials", material);
   }
@@ -213,7 +213,7 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
     bar->frequency   = bar->wave_number * std::sqrt(E / m->Density());
     sim.analytic     = std::move(bar);
   } else if (type == 5) {
-    PetscCheck(sim.axisymmetric, sim.comm, PETSC_ERR_USER_INPUT, "-analytic axisymmetric_radial needs -axisymmetric (and -dim 2)");
+    PetscCheck(sim.mpm.axisymmetric, sim.comm, PETSC_ERR_USER_INPUT, "-analytic axisymmetric_radial needs -axisymmetric (and -dim 2)");
     auto mms       = std::make_unique<AxisymmetricRadial>();
     mms->amplitude = amplitude > 0 ? amplitude : 0.05;
     mms->mu        = E / (2 * (1 + nu));
@@ -230,20 +230,20 @@ PetscErrorCode CreateAnalyticSolution(Simulation &sim)
     mms->c         = std::sqrt(E / mms->rho0);
     sim.analytic   = std::move(mms);
   }
-  sim.analytic->dim = sim.grid.dim;
+  sim.analytic->dim = sim.mpm.grid.dim;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 // Moves every particle to X + u(X, 0) with the exact velocity and deformation gradient.
 PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
 {
-  PetscInt   n, dim = sim.grid.dim;
+  PetscInt   n, dim = sim.mpm.grid.dim;
   PetscReal *x, *X0, *v, *F, *vol, *vol0, *T;
   PetscFunctionBeginUser;
   if (!sim.analytic) PetscFunctionReturn(PETSC_SUCCESS);
   const bool temperature = sim.analytic->HasTemperature();
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::position0, &X0));
   PetscCall(fields.Get(field::velocity, &v));
@@ -272,12 +272,12 @@ PetscErrorCode ApplyAnalyticInitialCondition(Simulation &sim)
 
 PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscReal *max)
 {
-  PetscInt   n, dim = sim.grid.dim;
+  PetscInt   n, dim = sim.mpm.grid.dim;
   PetscReal *x, *X0, *mass;
   PetscReal  local[3] = {0, 0, 0}, global[3]; // sum m e^2, sum m, max e
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::position0, &X0));
   PetscCall(fields.Get(field::mass, &mass));
@@ -303,12 +303,12 @@ PetscErrorCode AnalyticDisplacementError(Simulation &sim, PetscReal *rms, PetscR
 
 PetscErrorCode AnalyticTemperatureError(Simulation &sim, PetscReal *rms, PetscReal *max)
 {
-  PetscInt   n, dim = sim.grid.dim;
+  PetscInt   n, dim = sim.mpm.grid.dim;
   PetscReal *X0, *mass, *T;
   PetscReal  local[3] = {0, 0, 0}, global[3]; // sum m e^2, sum m, max |e|
   PetscFunctionBeginUser;
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(field::position0, &X0));
   PetscCall(fields.Get(field::mass, &mass));
   PetscCall(fields.Get(field::temperature, &T));

@@ -222,24 +222,24 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
 PetscErrorCode TaylorFinish(Simulation &sim)
 {
   TaylorScene     &t   = *sim.taylor;
-  const PetscInt   dim = sim.grid.dim;
+  const PetscInt   dim = sim.mpm.grid.dim;
   PetscInt         n, rod = -1;
   const PetscReal *x, *hw, *F, *T, *eps = nullptr;
   const PetscInt  *material;
   constexpr int    NV = 6; // r, z, half-size along r, along z, plastic strain, T
   std::vector<PetscReal> local;
   PetscFunctionBeginUser;
-  for (size_t m = 0; m < sim.materials.size(); ++m)
-    if (sim.materials[m]->name_ == t.material) rod = (PetscInt)m;
+  for (size_t m = 0; m < sim.mpm.materials.size(); ++m)
+    if (sim.mpm.materials[m]->name_ == t.material) rod = (PetscInt)m;
   PetscCheck(rod >= 0, sim.comm, PETSC_ERR_USER_INPUT, "-taylor: material %s is not in -materials", t.material.c_str());
-  PetscCall(DMSwarmGetLocalSize(sim.swarm, &n));
-  SwarmAccess fields(sim.swarm);
+  PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+  SwarmAccess fields(sim.mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
   PetscCall(fields.Get(field::half_width0, &hw));
   PetscCall(fields.Get(field::F, &F));
   PetscCall(fields.Get(field::temperature, &T));
   PetscCall(fields.Get(field::material, &material));
-  if (SwarmHasModelField(sim, state_field::plastic_strain)) PetscCall(fields.Get(state_field::plastic_strain, &eps));
+  if (SwarmHasModelField(sim.mpm, state_field::plastic_strain)) PetscCall(fields.Get(state_field::plastic_strain, &eps));
   const int az = dim == 2 ? 1 : 2; // axis direction
   for (PetscInt p = 0; p < n; ++p) {
     if (material[p] != rod) continue;
@@ -289,9 +289,9 @@ PetscErrorCode TaylorFinish(Simulation &sim)
       PetscInt  cells[3];
       PetscReal lower[3], upper[3];
       for (int d = 0; d < 3; ++d) {
-        cells[d] = sim.grid.cells[d];
-        lower[d] = sim.grid.lower[d];
-        upper[d] = sim.grid.upper[d];
+        cells[d] = sim.mpm.grid.cells[d];
+        lower[d] = sim.mpm.grid.lower[d];
+        upper[d] = sim.mpm.grid.upper[d];
       }
       spacing = (upper[az] - lower[az]) / cells[az] / t.particles_per_cell;
     }
@@ -357,8 +357,8 @@ PetscErrorCode TaylorSummary(const Simulation &sim, std::ostream &s)
   const TaylorScene &t = *sim.taylor;
   PetscFunctionBeginUser;
   s << "  \"taylor\": {\"material\": \"" << t.material_file << "\", \"length0\": " << t.length << ", \"diameter0\": " << t.diameter << ", \"velocity\": " << t.velocity << ", \"temperature0\": " << t.temperature;
-  s << ", \"cells_per_diameter\": " << t.cells_per_diameter << ", \"particles_per_cell\": " << t.particles_per_cell << ", \"axisymmetric\": " << (sim.axisymmetric ? "true" : "false");
-  s << ", \"stopped_on_kinetic_energy\": " << (sim.diag.kinetic_stop ? "true" : "false");
+  s << ", \"cells_per_diameter\": " << t.cells_per_diameter << ", \"particles_per_cell\": " << t.particles_per_cell << ", \"axisymmetric\": " << (sim.mpm.axisymmetric ? "true" : "false");
+  s << ", \"stopped_on_kinetic_energy\": " << (sim.mpm.diag.kinetic_stop ? "true" : "false");
   s << ", \"Lf_centres\": " << t.Lf[0] << ", \"Lf_surface\": " << t.Lf[1] << ", \"Df_centres\": " << t.Df[0] << ", \"Df_surface\": " << t.Df[1];
   s << ", \"D02_centres\": " << t.D02[0] << ", \"D02_surface\": " << t.D02[1] << ", \"max_plastic_strain\": " << t.max_plastic_strain << ", \"max_temperature\": " << t.max_temperature;
   s << ", \"rod_particles\": " << t.particles << ", \"profile\": \"taylor_profile.csv\"},\n";
