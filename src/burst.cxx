@@ -96,7 +96,11 @@ static PetscErrorCode SetUp(Simulation &sim)
   const Grid &g   = sim.mpm.grid;
   const bool  gas = IceMaterialsRequested(sim.comm);
   IceGridSpec spec{g.dim, {g.cells[0], g.cells[1], g.cells[2]}, {g.lower[0], g.lower[1], g.lower[2]}, {g.h[0], g.h[1], g.h[2]}, {sim.mpm.gravity[0], sim.mpm.gravity[1], sim.mpm.gravity[2]}, g.da_nodes, {}, sim.mpm.axisymmetric == PETSC_TRUE};
-  if (!sim.mpm.materials.empty() && gas) PetscCall(CouplingSolidMaterials(sim, spec.solids));
+  if (!sim.mpm.materials.empty() && gas) {
+    Coupling *coupling = nullptr;
+    PetscCall(CouplingSolidMaterials(sim.mpm, spec.solids, &coupling));
+    sim.coupling.reset(coupling);
+  }
   // the gas grid copies the node ranges when it is created, after the start-up balance
   PetscCheck(!gas || !g.balance || g.balance_interval == 0, sim.comm, PETSC_ERR_SUP, "Option -grid_balance_interval = %" PetscInt_FMT " is not available with gases (-ice_materials): the gas grid is balanced at start-up only; use -grid_balance_interval 0", g.balance_interval);
   sim.mpm.grid.balance_with_gas = gas;
@@ -117,7 +121,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     PetscCall(IceCreate(sim.comm, spec, sim.help, &ice));
     sim.ice.reset(ice);
     sim.mpm.grid.ranges_copied = sim.ice != nullptr;
-    if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(sim));
+    if (sim.help && sim.coupling) PetscCall(CouplingBurnHelp(*sim.coupling));
     if (!sim.ice) sim.coupling.reset();
     if (sim.ice) PetscCall(IceApplyPerturbation(*sim.ice));
   }
@@ -126,7 +130,7 @@ static PetscErrorCode SetUp(Simulation &sim)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   // 6. Gas and particles meet (src/coupling/)
-  if (sim.coupling) PetscCall(CouplingSetUp(sim));
+  if (sim.coupling) PetscCall(CouplingSetUp(*sim.coupling, *sim.ice));
   PetscCall(OutputSetUp(sim));
   PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones
   SetMpmClock(sim);

@@ -141,7 +141,7 @@ PetscErrorCode ApplyPhase(Simulation &sim)
   sim.ice->sound_speed_knob = p == RunPhase::HeatUp ? ph.heatup_sound_speed_knob : ph.mechanics_sound_speed_knob;
   if (ph.semi_implicit_gas) sim.ice->pressure_solver = p == RunPhase::Mechanics && ph.mechanics_explicit ? IcePressureSolver::Explicit : IcePressureSolver::SemiImplicit;
   if (p == RunPhase::Mechanics && ph.mechanics_explicit) sim.ice->sound_speed_knob = 1; // (explicit: the sound speed in full)
-  PetscCall(CouplingMeasureSurfaceHeat(sim, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
+  PetscCall(CouplingMeasureSurfaceHeat(*sim.coupling, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
   if (sim.mpm.heat) PetscCall(HeatSetSurfaceSource(sim.mpm, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -271,20 +271,20 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   if (ph.ignition_material < 0) {
     std::string burning;
     for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
-      PetscCall(CouplingIgnition(sim, (PetscInt)m, &model, &T_model));
+      PetscCall(CouplingIgnition(*sim.coupling, (PetscInt)m, &model, &T_model));
       if (model == "none") continue;
       PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.mpm.materials[ph.ignition_material]->Name(), sim.mpm.materials[m]->Name());
       ph.ignition_material = (PetscInt)m;
     }
     PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: no solid burns (-<material>_burn_type); give -phase_ignition_material and -phase_ignition_temperature");
   }
-  PetscCall(CouplingIgnition(sim, ph.ignition_material, &model, &T_model));
+  PetscCall(CouplingIgnition(*sim.coupling, ph.ignition_material, &model, &T_model));
   if (ph.ignition_temperature <= 0) ph.ignition_temperature = T_model;
   ph.cell_ignition_temperature = PETSC_MAX_REAL;
   for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
     std::string burns;
     PetscReal   T_burns = 0;
-    PetscCall(CouplingIgnition(sim, (PetscInt)m, &burns, &T_burns));
+    PetscCall(CouplingIgnition(*sim.coupling, (PetscInt)m, &burns, &T_burns));
     if (burns != "none") ph.cell_ignition_temperature = PetscMin(ph.cell_ignition_temperature, T_burns);
   }
   if (ph.ignition_by_kinetics && !ph.kinetics) {
@@ -320,7 +320,7 @@ PetscErrorCode PhasesMeasureHeatBefore(Simulation &sim)
   PetscCall(fields.RestoreAll());
   ph.window_start  = sim.time;
   ph.window_length = 0;
-  PetscCall(CouplingMeasureSurfaceHeat(sim, PETSC_TRUE));
+  PetscCall(CouplingMeasureSurfaceHeat(*sim.coupling, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -397,13 +397,13 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
       }
       if (check) {
         PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-        PetscCall(CouplingProjectSolids(sim));
+        PetscCall(CouplingProjectSolids(*sim.coupling));
         ph.heat_only_checked = true;
       }
     }
     PetscInt64 cells = 0;
     PetscReal  x[3];
-    if (check) PetscCall(CouplingIgnitingCells(sim, &cells, x, &ph.hottest_ignition));
+    if (check) PetscCall(CouplingIgnitingCells(*sim.coupling, &cells, x, &ph.hottest_ignition));
     if (cells > 0) std::snprintf(why, sizeof(why), "ignition: the burn model's criterion holds in %lld cell(s); the hottest reactant surface cell, at (%g, %g, %g) m, is at %g K", (long long)cells, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition);
   }
   if (why[0]) {

@@ -6,6 +6,7 @@
 #include "mpm/mpm.hpp"
 #include "io/output.hpp"
 #include "ice/ice_fwd.hpp"
+#include "coupling/coupling_fwd.hpp"
 #include "run_control.hpp"
 #include "phases.hpp"
 #include <memory>
@@ -27,9 +28,6 @@ struct TaylorScene;
 
 // Simulation owns the optional components one way, a std::unique_ptr; those only declared here
 // are deleted by their own files (so this header needs no more than their names).
-struct CouplingDeleter {
-  void operator()(Coupling *coupling) const; // src/coupling/coupling.cxx
-};
 struct TaylorSceneDeleter {
   void operator()(TaylorScene *taylor) const; // src/scenes/taylor.cxx
 };

@@ -44,38 +44,38 @@
 
 namespace burst {
 
-static PetscErrorCode MPMStep(Simulation &sim)
+static PetscErrorCode MPMStep(MpmSolver &mpm)
 {
   PetscFunctionBeginUser;
-  PetscCall(ComputeExternalForces(sim.mpm));
-  switch (sim.mpm.scheme) {
+  PetscCall(ComputeExternalForces(mpm));
+  switch (mpm.scheme) {
   case StepScheme::USL:
-    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim.mpm));
+    PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridUpdate(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(UpdateStress(mpm));
     break;
   case StepScheme::MUSL:
-    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim.mpm));
-    PetscCall(RemapMomentum(sim.mpm)); // G2P(v) and P2G(mv) in one particle pass
-    PetscCall(GridVelocityFromMomentum(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim.mpm));
+    PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridUpdate(mpm));
+    PetscCall(RemapMomentum(mpm)); // G2P(v) and P2G(mv) in one particle pass
+    PetscCall(GridVelocityFromMomentum(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(UpdateStress(mpm));
     break;
   case StepScheme::USF:
-    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-    PetscCall(GridVelocityFromMomentum(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-    PetscCall(UpdateStress(sim.mpm));
-    PetscCall(ParticlesToGrid(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-    PetscCall(GridUpdate(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+    PetscCall(GridVelocityFromMomentum(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+    PetscCall(UpdateStress(mpm));
+    PetscCall(ParticlesToGrid(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+    PetscCall(GridUpdate(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
     break;
   }
-  PetscCall(MigrateParticles(sim.mpm));
-  PetscCall(ConductHeat(sim.mpm)); // after migration: the stencil needs every particle on its owner rank
-  PetscCall(NonlocalAverage(sim.mpm)); // likewise; no-op unless a material regularises nonlocally
+  PetscCall(MigrateParticles(mpm));
+  PetscCall(ConductHeat(mpm)); // after migration: the stencil needs every particle on its owner rank
+  PetscCall(NonlocalAverage(mpm)); // likewise; no-op unless a material regularises nonlocally
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -101,40 +101,42 @@ static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
 // Solids and gas in one step (ice.md 1.2).
 static PetscErrorCode CoupledStep(Simulation &sim)
 {
+  MpmSolver &mpm = sim.mpm;
+  Coupling  &coupling = *sim.coupling;
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
-  PetscCall(ComputeExternalForces(sim.mpm));
-  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-  PetscCall(CouplingProjectSolids(sim));
+  PetscCall(ComputeExternalForces(mpm));
+  PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(CouplingProjectSolids(coupling));
   PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
-  PetscCall(CouplingBurn(sim));
-  PetscCall(CouplingBurnParticles(sim));
+  PetscCall(CouplingBurn(coupling));
+  PetscCall(CouplingBurnParticles(coupling));
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
-  PetscCall(CouplingPressureToParticles(sim));
-  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
-  PetscCall(GridUpdate(sim.mpm));
-  PetscCall(CouplingSolidVelocity(sim));
+  PetscCall(CouplingPressureToParticles(coupling));
+  PetscCall(ParticlesToGrid(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE}));
+  PetscCall(GridUpdate(mpm));
+  PetscCall(CouplingSolidVelocity(coupling));
   PetscCall(IceSources(ice));
   PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
-  PetscCall(CouplingSurfaceHeat(sim)); // no-op unless -coupling_surface_heat_transfer
+  PetscCall(CouplingSurfaceHeat(coupling)); // no-op unless -coupling_surface_heat_transfer
   PetscCall(IceBudgetAfterExchange(ice));
-  PetscCall(CouplingIncrementsToNodes(sim));
-  PetscCall(CouplingChargePressureWork(sim));
-  if (sim.mpm.scheme == StepScheme::MUSL) {
-    PetscCall(RemapMomentum(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
-    PetscCall(GridVelocityFromMomentum(sim.mpm));
-    PetscCall(GridToParticles(sim.mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
-  } else PetscCall(GridToParticles(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
-  PetscCall(CouplingHeatToParticles(sim));
-  PetscCall(UpdateStress(sim.mpm));
-  PetscCall(MigrateParticles(sim.mpm));
-  PetscCall(ConductHeat(sim.mpm));
-  PetscCall(NonlocalAverage(sim.mpm));
+  PetscCall(CouplingIncrementsToNodes(coupling));
+  PetscCall(CouplingChargePressureWork(coupling));
+  if (mpm.scheme == StepScheme::MUSL) {
+    PetscCall(RemapMomentum(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
+    PetscCall(GridVelocityFromMomentum(mpm));
+    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
+  } else PetscCall(GridToParticles(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
+  PetscCall(CouplingHeatToParticles(coupling));
+  PetscCall(UpdateStress(mpm));
+  PetscCall(MigrateParticles(mpm));
+  PetscCall(ConductHeat(mpm));
+  PetscCall(NonlocalAverage(mpm));
   PetscCall(IceAdvect(ice));
   PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
@@ -145,27 +147,29 @@ static PetscErrorCode CoupledStep(Simulation &sim)
 // The heat-up: the gas flows around solids held still; they take its heat and conduct it.
 static PetscErrorCode HeatUpStep(Simulation &sim)
 {
+  MpmSolver &mpm = sim.mpm;
+  Coupling  &coupling = *sim.coupling;
   IceSolver &ice = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
-  PetscCall(ParticlesToGrid(sim.mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
-  PetscCall(GridVelocityFromMomentum(sim.mpm)); // the particles are at rest: every nodal velocity is zero
-  PetscCall(CouplingProjectSolids(sim));
+  PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
+  PetscCall(GridVelocityFromMomentum(mpm)); // the particles are at rest: every nodal velocity is zero
+  PetscCall(CouplingProjectSolids(coupling));
   PetscCall(IceBudgetStepStart(ice));
   PetscCall(IceEquilibrate(ice));
   PetscCall(IceFaceVelocities(ice));
   PetscCall(IceUpdatePressure(ice));
-  PetscCall(CouplingSolidVelocity(sim));
+  PetscCall(CouplingSolidVelocity(coupling));
   PetscCall(IceSources(ice));
   PetscCall(IceBudgetFaces(ice));
   PetscCall(IceCellExchange(ice));
-  PetscCall(CouplingSurfaceHeat(sim)); // no-op unless -coupling_surface_heat_transfer
+  PetscCall(CouplingSurfaceHeat(coupling)); // no-op unless -coupling_surface_heat_transfer
   PetscCall(IceBudgetAfterExchange(ice));
-  PetscCall(CouplingIncrementsToNodes(sim)); // the heat increments; no velocity reaches the particles
+  PetscCall(CouplingIncrementsToNodes(coupling)); // the heat increments; no velocity reaches the particles
   PetscCall(PhasesMeasureHeatBefore(sim));
-  PetscCall(CouplingHeatToParticles(sim));
+  PetscCall(CouplingHeatToParticles(coupling));
   PetscCall(PhasesMeasureHeatAfter(sim));
-  PetscCall(ConductHeat(sim.mpm));
+  PetscCall(ConductHeat(mpm));
   PetscCall(IceAdvect(ice));
   PetscCall(IceBudgetOpenFaces(ice));
   ice.time += sim.dt;
@@ -230,7 +234,7 @@ PetscErrorCode TakeStep(Simulation &sim)
   else if (sim.phases.Current() == RunPhase::HeatOnly) PetscCall(HeatOnlyStep(sim));
   else if (sim.coupling) PetscCall(CoupledStep(sim));
   else {
-    if (sim.HasParticles()) PetscCall(MPMStep(sim));
+    if (sim.HasParticles()) PetscCall(MPMStep(sim.mpm));
     if (sim.ice) PetscCall(ICEStep(*sim.ice, sim.dt));
   }
   sim.time += sim.dt;

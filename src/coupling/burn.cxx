@@ -42,28 +42,28 @@ static inline void AddConversion(IceSolver &ice, PetscInt idx, PetscInt m, Petsc
   ice.energy_source[idx * n + m] += dr * e;
 }
 
-PetscErrorCode CouplingBurnSetUp(Simulation &sim)
+PetscErrorCode CouplingBurnSetUp(Coupling &c)
 {
-  Coupling  &c   = *sim.coupling;
-  IceSolver &ice = *sim.ice;
+  MpmSolver &mpm   = *c.mpm;
+  IceSolver &ice = *c.ice;
   PetscFunctionBeginUser;
   c.burn.resize(c.nsolid);
   c.product.assign(c.nsolid, -1);
   c.seed_mass.assign(c.nsolid, 0);
-  PetscCall(BurnoutOptions(sim.comm, &c.burnout, &c.burnout_volume_ratio));
+  PetscCall(BurnoutOptions(mpm.comm, &c.burnout, &c.burnout_volume_ratio));
   bool any = false;
-  for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
+  for (size_t m = 0; m < mpm.materials.size(); ++m) {
     const PetscInt s = c.solid_of[m];
     if (s < 0) continue;
-    const Material &mat = *sim.mpm.materials[m];
+    const Material &mat = *mpm.materials[m];
     BurnModel      *model;
-    PetscCall(BurnModelCreate(sim.comm, mat.Name(), &model));
+    PetscCall(BurnModelCreate(mpm.comm, mat.Name(), &model));
     c.burn[s].reset(model);
     if (model->name_ == "none") continue;
     char              product[256] = "";
     PetscBool         set          = PETSC_FALSE;
     const std::string pre          = std::string(mat.Name()) + "_";
-    PetscOptionsBegin(sim.comm, pre.c_str(), "Burning", "Coupling");
+    PetscOptionsBegin(mpm.comm, pre.c_str(), "Burning", "Coupling");
     PetscCall(PetscOptionsString("-burn_product", "The gas material (one of -ice_materials) that the burnt solid becomes", "", product, product, sizeof(product), &set));
     PetscOptionsEnd();
     std::string names;
@@ -71,7 +71,7 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
       names += (g ? ", " : "") + ice.materials[g].name;
       if (ice.materials[g].name == product) c.product[s] = g;
     }
-    PetscCheck(c.product[s] >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Material %s burns (-%sburn_type %s): -%sburn_product must name its product gas; valid choices (-ice_materials): %s", mat.Name(), pre.c_str(), model->name_.c_str(), pre.c_str(), names.c_str());
+    PetscCheck(c.product[s] >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Material %s burns (-%sburn_type %s): -%sburn_product must name its product gas; valid choices (-ice_materials): %s", mat.Name(), pre.c_str(), model->name_.c_str(), pre.c_str(), names.c_str());
     any = true;
   }
   if (any) {
@@ -80,19 +80,19 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
     const PetscReal *mass;
     const PetscInt  *material;
     std::vector<PetscReal> local(c.nsolid, 0);
-    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
-    SwarmAccess fields(sim.mpm.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(field::mass, &mass));
     PetscCall(fields.Get(field::material, &material));
     for (PetscInt p = 0; p < n; ++p) local[c.solid_of[material[p]]] = PetscMax(local[c.solid_of[material[p]]], mass[p]);
     PetscCall(fields.RestoreAll());
-    PetscCallMPI(MPI_Allreduce(local.data(), c.seed_mass.data(), (int)c.nsolid, MPIU_REAL, MPI_MAX, sim.comm));
+    PetscCallMPI(MPI_Allreduce(local.data(), c.seed_mass.data(), (int)c.nsolid, MPIU_REAL, MPI_MAX, mpm.comm));
     const size_t nlocal = (size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
     ice.mass_source.assign(nlocal * ice.nmat, 0);
     ice.momentum_source.assign(nlocal * ice.nmat * 3, 0);
     ice.energy_source.assign(nlocal * ice.nmat, 0);
     c.burnt_fraction.assign(nlocal * c.nsolid, 0);
-    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.nsolid, &c.da_phi));
+    PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, c.nsolid, &c.da_phi));
     PetscCall(DMDACreateCompatibleDMDA(ice.da, 5 * ice.nmat + c.nsolid, &c.da_source));
     PetscCall(DMCreateGlobalVector(c.da_source, &c.source_global));
     PetscCall(DMCreateLocalVector(c.da_source, &c.source_local));
@@ -102,38 +102,40 @@ PetscErrorCode CouplingBurnSetUp(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscReal *CouplingCounters(Simulation &sim) { return sim.coupling->counters; }
+PetscReal *CouplingCounters(Coupling &c) { return c.counters; }
 
-PetscErrorCode CouplingIgnition(Simulation &sim, PetscInt material, std::string *model, PetscReal *temperature)
+PetscErrorCode CouplingIgnition(Coupling &c, PetscInt material, std::string *model, PetscReal *temperature)
 {
   PetscFunctionBeginUser;
-  const Coupling &c = *sim.coupling;
+  const MpmSolver &mpm = *c.mpm;
   const PetscInt  s = c.solid_of[material];
   *model            = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
   *temperature      = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles)
+PetscErrorCode CouplingSummary(Coupling &c, PetscReal *burnt_mass, PetscInt64 *burnt_particles)
 {
+  const MpmSolver &mpm = *c.mpm;
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Allreduce(&sim.coupling->burnt_mass, burnt_mass, 1, MPIU_REAL, MPI_SUM, sim.comm));
-  *burnt_particles = sim.coupling->burnt_particles;
+  PetscCallMPI(MPI_Allreduce(&c.burnt_mass, burnt_mass, 1, MPIU_REAL, MPI_SUM, mpm.comm));
+  *burnt_particles = c.burnt_particles;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingBurnHelp(Simulation &sim)
+PetscErrorCode CouplingBurnHelp(Coupling &c)
 {
+  const MpmSolver &mpm = *c.mpm;
   PetscReal burnout = 1e-3, volume_ratio = 0.5;
   char      product[256] = "";
   PetscFunctionBeginUser;
-  PetscCall(BurnoutOptions(sim.comm, &burnout, &volume_ratio));
-  for (const auto &mat : sim.mpm.materials) {
+  PetscCall(BurnoutOptions(mpm.comm, &burnout, &volume_ratio));
+  for (const auto &mat : mpm.materials) {
     BurnModel        *model;
     const std::string pre = std::string(mat->Name()) + "_";
-    PetscCall(BurnModelCreate(sim.comm, mat->Name(), &model));
+    PetscCall(BurnModelCreate(mpm.comm, mat->Name(), &model));
     delete model;
-    PetscOptionsBegin(sim.comm, pre.c_str(), "Burning", "Coupling");
+    PetscOptionsBegin(mpm.comm, pre.c_str(), "Burning", "Coupling");
     PetscCall(PetscOptionsString("-burn_product", "The gas material (one of -ice_materials) that the burnt solid becomes", "", product, product, sizeof(product), nullptr));
     PetscOptionsEnd();
   }
@@ -150,11 +152,11 @@ static PetscReal GasRoom(const IceSolver &ice, const PetscScalar *a, PetscInt id
 
 // What the burn model of solid s reads about local cell (i, j, k) (ice.md 3.1-3.3), and the gradient
 // of the reactant's nodal mass (the burning surface's normal is -grad).
-static void CellBurnInput(Simulation &sim, const PetscScalar *a, const PetscScalar *nodes, PetscInt i, PetscInt j, PetscInt k, PetscInt s, BurnInput *in, PetscReal grad[3])
+static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *nodes, PetscInt i, PetscInt j, PetscInt k, PetscInt s, BurnInput *in, PetscReal grad[3])
 {
-  Coupling            &c   = *sim.coupling;
-  IceSolver           &ice = *sim.ice;
-  const LocalNodeIndex index(sim.mpm.grid);
+  MpmSolver           &mpm   = *c.mpm;
+  IceSolver           &ice = *c.ice;
+  const LocalNodeIndex index(mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
   const PetscReal      V    = ice.CellVolume();
   const PetscScalar   *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
@@ -192,16 +194,16 @@ static void CellBurnInput(Simulation &sim, const PetscScalar *a, const PetscScal
   in->n_particles   = M > 2 * in->M_tiny ? 1 : 0;
 }
 
-PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot)
+PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot)
 {
-  Coupling          &c   = *sim.coupling;
-  IceSolver         &ice = *sim.ice;
+  MpmSolver         &mpm   = *c.mpm;
+  IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *a;
   PetscInt64         local = 0;
   struct {
     PetscReal   value;
     PetscMPIInt rank;
-  } hottest = {-1, sim.rank}, global;
+  } hottest = {-1, mpm.rank}, global;
   PetscReal at[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
@@ -213,7 +215,7 @@ PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscRe
           if (!c.burn[s] || c.product[s] < 0) continue;
           BurnInput in;
           PetscReal grad[3];
-          CellBurnInput(sim, a, nodes, i, j, k, s, &in, grad);
+          CellBurnInput(c, a, nodes, i, j, k, s, &in, grad);
           if (!(in.M_s > 2 * in.M_tiny)) continue; // (a cell without the reactant's particles)
           const bool ignites = c.burn[s]->Ignites(in);
           if (ignites) local += 1;
@@ -226,19 +228,19 @@ PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscRe
         }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
-  PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT64, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&local, count, 1, MPIU_INT64, MPI_SUM, mpm.comm));
   static_assert(sizeof(PetscReal) == sizeof(double), "MPI_DOUBLE_INT below");
-  PetscCallMPI(MPI_Allreduce(&hottest, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, sim.comm));
-  PetscCallMPI(MPI_Bcast(at, 3, MPIU_REAL, global.rank, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&hottest, &global, 1, MPI_DOUBLE_INT, MPI_MAXLOC, mpm.comm));
+  PetscCallMPI(MPI_Bcast(at, 3, MPIU_REAL, global.rank, mpm.comm));
   for (int d = 0; d < 3; ++d) where[d] = at[d];
   *T_hot = global.value;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingBurn(Simulation &sim)
+PetscErrorCode CouplingBurn(Coupling &c)
 {
-  Coupling          &c   = *sim.coupling;
-  IceSolver         &ice = *sim.ice;
+  MpmSolver         &mpm   = *c.mpm;
+  IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
   ice.has_mass_source = !c.burnt_fraction.empty();
@@ -262,7 +264,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
           const PetscInt  m = c.first + s, g = c.product[s];
           BurnInput in;
           PetscReal grad[3];
-          CellBurnInput(sim, a, nodes, i, j, k, s, &in, grad);
+          CellBurnInput(c, a, nodes, i, j, k, s, &in, grad);
           const PetscReal M = in.M_s;
           BurnOutput out;
           PetscCall(c.burn[s]->Evaluate(in, &out));
@@ -341,7 +343,7 @@ PetscErrorCode CouplingBurn(Simulation &sim)
 namespace {
 // Nodal burnt fraction -> reactant particles: mass, volumes and energy scale with the mass left.
 struct BurnParticles {
-  Simulation        &sim;
+  MpmSolver         &mpm;
   Coupling          &c;
   IceSolver         &ice;
   const PetscScalar *phi; // per node, per solid
@@ -349,7 +351,7 @@ struct BurnParticles {
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.mpm.grid;
+    const Grid          &g = mpm.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F;
@@ -357,9 +359,9 @@ struct BurnParticles {
     const PetscReal     *v, *T;
     const PetscInt      *material;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     remove.assign(n, 0);
-    SwarmAccess fields(sim.mpm.swarm);
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -385,13 +387,13 @@ struct BurnParticles {
       for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
       // what leaves the particles goes to the gas: it leaves the solids' energy balance
       const PetscReal burnt = (1 - keep) * mass[p];
-      sim.mpm.diag.removed_mass += burnt;
-      sim.mpm.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
+      mpm.diag.removed_mass += burnt;
+      mpm.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
       c.counters[kBurntParticleMass] += burnt;
       c.counters[kBurntParticleEnergy] += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
       c.counters[kBurntParticleThermal] += burnt * cv * T[p];
       for (int a = 0; a < DIM; ++a) {
-        sim.mpm.diag.removed_momentum[a] += burnt * v[DIM * p + a];
+        mpm.diag.removed_momentum[a] += burnt * v[DIM * p + a];
         c.counters[kBurntParticleMomentum + a] += burnt * v[DIM * p + a];
       }
       mass[p] *= keep;
@@ -422,10 +424,10 @@ struct BurnParticles {
 };
 } // namespace
 
-PetscErrorCode CouplingBurnParticles(Simulation &sim)
+PetscErrorCode CouplingBurnParticles(Coupling &c)
 {
-  Coupling  &c   = *sim.coupling;
-  IceSolver &ice = *sim.ice;
+  MpmSolver &mpm   = *c.mpm;
+  IceSolver &ice = *c.ice;
   PetscFunctionBeginUser;
   if (c.burnt_fraction.empty()) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_burn_particles, 0, 0, 0, 0));
@@ -456,13 +458,13 @@ PetscErrorCode CouplingBurnParticles(Simulation &sim)
   std::vector<char> &remove = c.burnt_out;
   const PetscScalar *phil;
   PetscCall(VecGetArrayRead(local, &phil));
-  BurnParticles kernel{sim, c, ice, phil, remove};
-  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
+  BurnParticles kernel{mpm, c, ice, phil, remove};
+  PetscCall(DispatchShape(mpm.grid.dim, mpm.shape, kernel));
   PetscCall(VecRestoreArrayRead(local, &phil));
   PetscInt64 removed = 0;
-  PetscCall(RemoveParticles(sim.mpm, remove, &removed));
+  PetscCall(RemoveParticles(mpm, remove, &removed));
   c.burnt_particles += removed;
-  if (removed) PetscCall(PetscInfo(sim.mpm.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", sim.step, removed));
+  if (removed) PetscCall(PetscInfo(mpm.swarm, "Step %" PetscInt_FMT ": %" PetscInt64_FMT " reactant particle(s) burnt out and removed\n", mpm.step, removed));
   PetscCall(PetscLogEventEnd(c.ev_burn_particles, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

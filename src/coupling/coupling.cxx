@@ -46,62 +46,63 @@ public:
   PetscReal Temperature(PetscReal, PetscReal) const override { return T_ref; }
 };
 
-PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec> &solids)
+PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> &solids, Coupling **coupling)
 {
   PetscFunctionBeginUser;
   auto c = std::make_unique<Coupling>();
-  PetscOptionsBegin(sim.comm, "", "Gas-solid coupling", "Coupling");
+  c->mpm = &mpm;
+  PetscOptionsBegin(mpm.comm, "", "Gas-solid coupling", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
-  PetscCall(CheckRange(sim.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
+  PetscCall(CheckRange(mpm.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(PetscOptionsReal("-coupling_surface_heat_transfer", "Convective heat transfer coefficient h between the solids' surfaces and the gas two cells out (W/(m^2 K)), >= 0; 0: off (src/coupling/surface_heat.cxx)", "", c->surface_h, &c->surface_h, nullptr));
-  PetscCall(CheckRange(sim.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
+  PetscCall(CheckRange(mpm.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
   PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
-  c->solid_of.assign(sim.mpm.materials.size(), -1);
-  for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
-    const Material &mat = *sim.mpm.materials[m];
+  c->solid_of.assign(mpm.materials.size(), -1);
+  for (size_t m = 0; m < mpm.materials.size(); ++m) {
+    const Material &mat = *mpm.materials[m];
     PetscReal       v[3];
-    PetscCheck(!mat.IsRigid(v), sim.comm, PETSC_ERR_SUP, "Material %s: a rigid body in a scene with gas is not supported yet", mat.Name());
-    PetscCheck(mat.BulkModulus() > 0, sim.comm, PETSC_ERR_SUP, "Material %s (model %s) reports no bulk modulus, which the gas coupling needs", mat.Name(), mat.Model());
+    PetscCheck(!mat.IsRigid(v), mpm.comm, PETSC_ERR_SUP, "Material %s: a rigid body in a scene with gas is not supported yet", mat.Name());
+    PetscCheck(mat.BulkModulus() > 0, mpm.comm, PETSC_ERR_SUP, "Material %s (model %s) reports no bulk modulus, which the gas coupling needs", mat.Name(), mat.Model());
     auto      eos  = std::make_unique<SolidCouplingEOS>();
     eos->K         = mat.BulkModulus();
     eos->rho0      = mat.Density();
     eos->p_ref     = c->p_ref;
     PetscBool set  = PETSC_FALSE;
     std::string pre = std::string(mat.Name()) + "_";
-    PetscOptionsBegin(sim.comm, pre.c_str(), "Solid as the gas sees it", "Coupling");
+    PetscOptionsBegin(mpm.comm, pre.c_str(), "Solid as the gas sees it", "Coupling");
     PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat of the solid for the heat exchange with the gas (J/(kg K)), > 0; required with gas", "", eos->cv, &eos->cv, &set));
     PetscOptionsEnd();
-    PetscCheck(set || sim.help, sim.comm, PETSC_ERR_USER_INPUT, "Material %s: a scene with gas needs -%sheat_capacity (J/(kg K), > 0) for the heat exchange", mat.Name(), pre.c_str());
-    PetscCall(CheckRange(sim.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
+    PetscCheck(set || mpm.help, mpm.comm, PETSC_ERR_USER_INPUT, "Material %s: a scene with gas needs -%sheat_capacity (J/(kg K), > 0) for the heat exchange", mat.Name(), pre.c_str());
+    PetscCall(CheckRange(mpm.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     c->solid_of[m] = c->nsolid++;
     c->rho0.push_back(mat.Density());
     eos->name_     = "solid_coupling";
     solids.push_back({mat.Name(), eos.release(), 300});
   }
-  sim.coupling.reset(c.release());
-  sim.mpm.ambient_pressure = PETSC_TRUE;
+  *coupling = c.release();
+  mpm.ambient_pressure = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 namespace {
 // Particles -> nodes, per solid material: mass, mass T, momentum.
 struct ProjectKernel {
-  Simulation  &sim;
+  MpmSolver         &mpm;
   Coupling    &c;
   PetscScalar *out;
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.mpm.grid;
+    const Grid          &g = mpm.grid;
     const LocalNodeIndex index(g);
     const PetscInt       stride = 2 + DIM, dof = c.mass_stride;
     PetscInt             n;
     const PetscReal     *x, *v, *m, *T, *hw, *F;
     const PetscInt      *mat;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
-    SwarmAccess fields(sim.mpm.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::mass, &m));
@@ -128,14 +129,14 @@ struct ProjectKernel {
 // Nodal values -> particles: ambient pressure (p_n - p_ref) and the temperature increment (whose
 // heat m c_v,s dT the budget counts).
 struct ParticleKernel {
-  Simulation        &sim;
+  MpmSolver         &mpm;
   Coupling          &c;
   const PetscScalar *inc;
   bool               pressure; // else temperature
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.mpm.grid;
+    const Grid          &g = mpm.grid;
     const LocalNodeIndex index(g);
     const PetscInt       dof = c.IncDof(DIM);
     PetscInt             n;
@@ -143,8 +144,8 @@ struct ParticleKernel {
     const PetscInt      *mat = nullptr;
     PetscReal           *out, heat = 0, *received = nullptr;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
-    SwarmAccess fields(sim.mpm.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
@@ -155,7 +156,7 @@ struct ParticleKernel {
       if (c.measure_surface_heat) PetscCall(fields.Get(field::surface_heat, &received));
     }
     bool             fill; // the pressure: this step's stencils from P2G(m, mv); the heat: after G2P moved them
-    Stencil<DIM, S> *stencils = sim.mpm.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = mpm.stencil_cache.Prepare<DIM, S>(n, mpm.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       Stencil<DIM, S> &st = stencils[p];
       if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -171,7 +172,7 @@ struct ParticleKernel {
         // back shows in the budget as heat the particles did not receive.
         value = PetscMax(value, -0.5 * out[p]);
         out[p] += value;
-        const PetscReal Q = m[p] * sim.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
+        const PetscReal Q = m[p] * c.ice->materials[c.first + c.solid_of[mat[p]]].eos->cv * value;
         heat += Q;
         if (received) received[p] += Q;
       }
@@ -184,23 +185,23 @@ struct ParticleKernel {
 
 } // namespace
 
-PetscErrorCode CouplingProjectSolids(Simulation &sim)
+PetscErrorCode CouplingProjectSolids(Coupling &c)
 {
-  Coupling    &c   = *sim.coupling;
-  IceSolver   &ice = *sim.ice;
+  MpmSolver   &mpm   = *c.mpm;
+  IceSolver   &ice = *c.ice;
   PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(c.ev_project, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(c.mass_local));
   PetscCall(VecGetArray(c.mass_local, &nodes));
-  ProjectKernel kernel{sim, c, nodes};
-  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
+  ProjectKernel kernel{mpm, c, nodes};
+  PetscCall(DispatchShape(mpm.grid.dim, mpm.shape, kernel));
   PetscCall(VecRestoreArray(c.mass_local, &nodes));
   PetscCall(VecZeroEntries(c.mass_global));
   PetscCall(DMLocalToGlobal(c.da_mass, c.mass_local, ADD_VALUES, c.mass_global));
   PetscCall(DMGlobalToLocal(c.da_mass, c.mass_global, INSERT_VALUES, c.mass_local));
   // nodes -> cells
-  const LocalNodeIndex index(sim.mpm.grid);
+  const LocalNodeIndex index(mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, S = ice.stride;
   const PetscReal      V   = ice.CellVolume();
   PetscCall(VecGetArray(c.mass_local, &nodes));
@@ -234,10 +235,10 @@ PetscErrorCode CouplingProjectSolids(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingPressureToParticles(Simulation &sim)
+PetscErrorCode CouplingPressureToParticles(Coupling &c)
 {
-  Coupling          &c   = *sim.coupling;
-  IceSolver         &ice = *sim.ice;
+  MpmSolver         &mpm   = *c.mpm;
+  IceSolver         &ice = *c.ice;
   const PetscScalar *a;
   PetscScalar       *inc;
   PetscInt           xs[3], xm[3];
@@ -261,26 +262,26 @@ PetscErrorCode CouplingPressureToParticles(Simulation &sim)
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   PetscCall(DMGlobalToLocal(c.da_inc, c.inc_global, INSERT_VALUES, c.inc_local));
   PetscCall(VecGetArrayRead(c.inc_local, &a));
-  ParticleKernel kernel{sim, c, a, true};
-  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
+  ParticleKernel kernel{mpm, c, a, true};
+  PetscCall(DispatchShape(mpm.grid.dim, mpm.shape, kernel));
   PetscCall(VecRestoreArrayRead(c.inc_local, &a));
-  PetscCall(CouplingAmbientImpulse(sim)); // its work is the gases' to pay (pressure_work.cxx)
+  PetscCall(CouplingAmbientImpulse(c)); // its work is the gases' to pay (pressure_work.cxx)
   PetscCall(PetscLogEventEnd(c.ev_pressure, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingSolidVelocity(Simulation &sim)
+PetscErrorCode CouplingSolidVelocity(Coupling &c)
 {
-  Coupling          &c   = *sim.coupling;
-  IceSolver         &ice = *sim.ice;
+  MpmSolver         &mpm   = *c.mpm;
+  IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *vel;
   PetscScalar       *a;
-  const LocalNodeIndex index(sim.mpm.grid);
-  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = sim.mpm.grid.num_velocity_fields * 2 * dim;
+  const LocalNodeIndex index(mpm.grid);
+  const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = mpm.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(c.ev_solid_velocity, 0, 0, 0, 0));
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
-  PetscCall(VecGetArrayRead(sim.mpm.grid.velocity_local, &vel));
+  PetscCall(VecGetArrayRead(mpm.grid.velocity_local, &vel));
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscReal V = ice.CellVolume();
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -298,18 +299,18 @@ PetscErrorCode CouplingSolidVelocity(Simulation &sim)
         }
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
-  PetscCall(VecRestoreArrayRead(sim.mpm.grid.velocity_local, &vel));
+  PetscCall(VecRestoreArrayRead(mpm.grid.velocity_local, &vel));
   PetscCall(VecRestoreArrayRead(c.mass_local, &nodes));
   PetscCall(IceUpdateGhosts(ice)); // the increments of ghost cells are taken against these
   PetscCall(PetscLogEventEnd(c.ev_solid_velocity, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
+PetscErrorCode CouplingIncrementsToNodes(Coupling &c)
 {
-  Coupling          &c   = *sim.coupling;
-  IceSolver         &ice = *sim.ice;
-  Grid              &g   = sim.mpm.grid;
+  MpmSolver         &mpm   = *c.mpm;
+  IceSolver         &ice = *c.ice;
+  Grid              &g   = mpm.grid;
   const PetscScalar *a;
   PetscScalar       *inc, *vel;
   PetscInt           xs[3], xm[3];
@@ -348,7 +349,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   // 2-D, more on the domain faces: the weights of a node sum to 1). Then what the nodes (and
   // through them the particles, sum_p m_p sum_i N_ip dX_i = sum_i m_i dX_i) receive is what the
   // cells gave. A field that carries several solids takes their nodal-mass-weighted mean.
-  const LocalNodeIndex index(sim.mpm.grid);
+  const LocalNodeIndex index(mpm.grid);
   const PetscInt       mstride = 2 + dim;
   const PetscScalar   *solid_mass;
   PetscCall(VecGetArrayRead(c.mass_local, &solid_mass));
@@ -391,7 +392,7 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
             // what the face held back is the face's impulse on the particles (their momentum changes by m_I dv_I)
             const PetscReal m_node = nodal[l * node_dof + f * g.NodeStride()];
             c.counters[kMomentumToNodes + d] += m_node * given;
-            if (value != given) sim.mpm.diag.bc_impulse[d] += m_node * (value - given);
+            if (value != given) mpm.diag.bc_impulse[d] += m_node * (value - given);
             ni[d] = value;
             c.counters[kKineticToNodes] += m_node * (vel[l * vdof + f * 2 * dim + dim + d] + 0.5 * value) * value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
@@ -411,31 +412,31 @@ PetscErrorCode CouplingIncrementsToNodes(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingHeatToParticles(Simulation &sim)
+PetscErrorCode CouplingHeatToParticles(Coupling &c)
 {
   const PetscScalar *inc;
   PetscFunctionBeginUser;
-  PetscCall(PetscLogEventBegin(sim.coupling->ev_heat, 0, 0, 0, 0));
-  PetscCall(VecGetArrayRead(sim.coupling->inc_local, &inc));
-  ParticleKernel kernel{sim, *sim.coupling, inc, false};
-  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
-  PetscCall(VecRestoreArrayRead(sim.coupling->inc_local, &inc));
-  PetscCall(PetscLogEventEnd(sim.coupling->ev_heat, 0, 0, 0, 0));
+  PetscCall(PetscLogEventBegin(c.ev_heat, 0, 0, 0, 0));
+  PetscCall(VecGetArrayRead(c.inc_local, &inc));
+  ParticleKernel kernel{*c.mpm, c, inc, false};
+  PetscCall(DispatchShape(c.mpm->grid.dim, c.mpm->shape, kernel));
+  PetscCall(VecRestoreArrayRead(c.inc_local, &inc));
+  PetscCall(PetscLogEventEnd(c.ev_heat, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingMeasureSurfaceHeat(Simulation &sim, PetscBool on)
+PetscErrorCode CouplingMeasureSurfaceHeat(Coupling &c, PetscBool on)
 {
   PetscFunctionBeginUser;
-  sim.coupling->measure_surface_heat = on;
+  c.measure_surface_heat = on;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingSetUp(Simulation &sim)
+PetscErrorCode CouplingSetUp(Coupling &c, IceSolver &ice)
 {
-  Coupling  &c   = *sim.coupling;
-  IceSolver &ice = *sim.ice;
+  MpmSolver &mpm = *c.mpm;
   PetscFunctionBeginUser;
+  c.ice = &ice;
   PetscClassId id;
   PetscCall(PetscClassIdRegister("Coupling", &id));
   PetscCall(PetscLogEventRegister("Cpl_Project", id, &c.ev_project));
@@ -447,22 +448,22 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
   PetscCall(PetscLogEventRegister("Cpl_HeatToParticles", id, &c.ev_heat));
   PetscCall(PetscLogEventRegister("Cpl_PressureWork", id, &c.ev_work));
   PetscCall(PetscLogEventRegister("Cpl_SurfaceHeat", id, &c.ev_surface));
-  PetscCheck(!sim.mpm.convert_failed, sim.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
-  PetscCheck(sim.mpm.scheme != StepScheme::USF, sim.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
+  PetscCheck(!mpm.convert_failed, mpm.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
+  PetscCheck(mpm.scheme != StepScheme::USF, mpm.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
-  c.mass_stride = c.nsolid * (2 + sim.mpm.grid.dim);
-  c.nfield      = sim.mpm.TwoDeformableFields() ? 2 : 1;
+  c.mass_stride = c.nsolid * (2 + mpm.grid.dim);
+  c.nfield      = mpm.TwoDeformableFields() ? 2 : 1;
   c.field_of.assign(c.nsolid, 0);
-  for (size_t m = 0; m < sim.mpm.materials.size(); ++m)
-    if (c.solid_of[m] >= 0) c.field_of[c.solid_of[m]] = sim.mpm.VelocityField((PetscInt)m, 0);
-  PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.mass_stride, &c.da_mass));
+  for (size_t m = 0; m < mpm.materials.size(); ++m)
+    if (c.solid_of[m] >= 0) c.field_of[c.solid_of[m]] = mpm.VelocityField((PetscInt)m, 0);
+  PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, c.mass_stride, &c.da_mass));
   PetscCall(DMCreateGlobalVector(c.da_mass, &c.mass_global));
   PetscCall(DMCreateLocalVector(c.da_mass, &c.mass_local));
-  PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.IncDof(sim.mpm.grid.dim), &c.da_inc));
+  PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, c.IncDof(mpm.grid.dim), &c.da_inc));
   PetscCall(DMCreateGlobalVector(c.da_inc, &c.inc_global));
   PetscCall(DMCreateLocalVector(c.da_inc, &c.inc_local));
   // the first projection, then the gases give up the volume the solids take at the cell pressure
-  PetscCall(CouplingProjectSolids(sim));
+  PetscCall(CouplingProjectSolids(c));
   std::vector<PetscReal> fraction((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2], 0);
   PetscScalar           *a;
   PetscCall(IceGetLocalArray(ice, &a));
@@ -478,17 +479,17 @@ PetscErrorCode CouplingSetUp(Simulation &sim)
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCall(IceMakeRoomForSolids(ice, fraction));
-  PetscCall(CouplingBurnSetUp(sim));
-  PetscCall(CouplingSurfaceHeatSetUp(sim));
+  PetscCall(CouplingBurnSetUp(c));
+  PetscCall(CouplingSurfaceHeatSetUp(c));
   if (c.charge_pressure_work) {
     ice.solid_pressure_dv.assign((size_t)ice.gxm[0] * ice.gxm[1] * ice.gxm[2] * c.nsolid * 3, 0);
     PetscCall(DMDACreateCompatibleDMDA(ice.da, c.nsolid * 3, &c.da_dv));
     PetscCall(DMCreateLocalVector(c.da_dv, &c.dv_local));
     PetscCall(VecCreateSeqWithArray(PETSC_COMM_SELF, c.nsolid * 3, (PetscInt)ice.solid_pressure_dv.size(), ice.solid_pressure_dv.data(), &c.dv_owned));
-    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, c.nfield * sim.mpm.grid.dim, &c.da_impulse));
+    PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, c.nfield * mpm.grid.dim, &c.da_impulse));
     PetscCall(DMCreateGlobalVector(c.da_impulse, &c.impulse_global));
     PetscCall(DMCreateLocalVector(c.da_impulse, &c.impulse_local));
-    PetscCall(DMDACreateCompatibleDMDA(sim.mpm.grid.da_nodes, 1, &c.da_work));
+    PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, 1, &c.da_work));
     PetscCall(DMCreateGlobalVector(c.da_work, &c.work_global));
     PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));
   }

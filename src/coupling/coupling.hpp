@@ -9,8 +9,9 @@
 // force uses sigma + (p - p_ref) I, which cancels the pressure gradient inside the solid where the
 // first path counts it, so that only the pressure on the solid's surface acts.
 #pragma once
-#include "../simulation.hpp"
+#include "../mpm/mpm.hpp"
 #include "../ice/ice.hpp"
+#include "coupling_fwd.hpp"
 
 namespace burst {
 
@@ -18,10 +19,10 @@ struct Coupling;
 
 // Before the gas solver exists: one solid material per non-rigid MPM material, with its coupling
 // equation of state (bulk-modulus form, the modified form in tension; ice.md 2.2).
-PetscErrorCode CouplingSolidMaterials(Simulation &sim, std::vector<IceSolidSpec> &solids);
+PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> &solids, Coupling **coupling);
 // After the particles and the gas exist: the projection objects, the first projection, and room
 // for the solids in the gas.
-PetscErrorCode CouplingSetUp(Simulation &sim);
+PetscErrorCode CouplingSetUp(Coupling &c, IceSolver &ice);
 
 // The coupling's part of a checkpoint: the burnt particles, and each rank's burnt mass and budget
 // counters.
@@ -29,32 +30,32 @@ class CheckpointValues;
 void CouplingCheckpointValues(Coupling &c, CheckpointValues &values);
 
 // The coupled phases, in the order of src/step.cxx.
-PetscErrorCode CouplingProjectSolids(Simulation &sim);       // particles -> nodes -> cells (M, u, T)
-PetscErrorCode CouplingPressureToParticles(Simulation &sim); // cell p -> nodes -> particles
-PetscErrorCode CouplingSolidVelocity(Simulation &sim);       // nodal v* after the MPM update -> cells
-PetscErrorCode CouplingIncrementsToNodes(Simulation &sim);   // pressure force + exchange -> nodes
-PetscErrorCode CouplingHeatToParticles(Simulation &sim);     // exchange heat -> particles
-PetscErrorCode CouplingSurfaceHeatSetUp(Simulation &sim);    // -coupling_surface_heat_transfer
-PetscErrorCode CouplingSurfaceHeat(Simulation &sim);         // convective heat from the gas to the solids' surfaces (after the cell exchange)
-PetscErrorCode CouplingSurfaceHeatTotal(Simulation &sim, PetscReal *total); // J so far, global
-PetscErrorCode CouplingMeasureSurfaceHeat(Simulation &sim, PetscBool on); // CouplingHeatToParticles adds each particle's heat (J) to its surface_heat field
-PetscErrorCode CouplingChargePressureWork(Simulation &sim);  // the gas pays the work its pressure did on the solids
+PetscErrorCode CouplingProjectSolids(Coupling &c);       // particles -> nodes -> cells (M, u, T)
+PetscErrorCode CouplingPressureToParticles(Coupling &c); // cell p -> nodes -> particles
+PetscErrorCode CouplingSolidVelocity(Coupling &c);       // nodal v* after the MPM update -> cells
+PetscErrorCode CouplingIncrementsToNodes(Coupling &c);   // pressure force + exchange -> nodes
+PetscErrorCode CouplingHeatToParticles(Coupling &c);     // exchange heat -> particles
+PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c);    // -coupling_surface_heat_transfer
+PetscErrorCode CouplingSurfaceHeat(Coupling &c);         // convective heat from the gas to the solids' surfaces (after the cell exchange)
+PetscErrorCode CouplingSurfaceHeatTotal(Coupling &c, PetscReal *total); // J so far, global
+PetscErrorCode CouplingMeasureSurfaceHeat(Coupling &c, PetscBool on); // CouplingHeatToParticles adds each particle's heat (J) to its surface_heat field
+PetscErrorCode CouplingChargePressureWork(Coupling &c);  // the gas pays the work its pressure did on the solids
 // Burning (burn.cxx): the reactants' models and products; the mass, momentum and energy that burn
 // in each cell (after the equilibration); the particles' share of it (right after, at the positions
 // the cells were projected from, so that the particles lose exactly what the gas gains).
-PetscErrorCode CouplingBurnSetUp(Simulation &sim);
-PetscErrorCode CouplingBurnHelp(Simulation &sim); // -help: list the burning options
+PetscErrorCode CouplingBurnSetUp(Coupling &c);
+PetscErrorCode CouplingBurnHelp(Coupling &c); // -help: list the burning options
 // summary.json: the mass burnt into gas and the burnt-out particles removed (collective).
 // The burn model of solid material `material` (a material id): its name ("none" if inert) and the
 // temperature its ignition criterion asks (K, 0 if none).
-PetscErrorCode CouplingIgnition(Simulation &sim, PetscInt material, std::string *model, PetscReal *temperature);
+PetscErrorCode CouplingIgnition(Coupling &c, PetscInt material, std::string *model, PetscReal *temperature);
 // The cells (global count) whose burn model's ignition criterion holds now, from this step's
 // projection (CouplingProjectSolids); where and how hot (the criterion's T_hot, K) the hottest cell
 // holding reactant particles on a reactant surface is. Burns nothing.
-PetscErrorCode CouplingIgnitingCells(Simulation &sim, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot);
-PetscErrorCode CouplingSummary(Simulation &sim, PetscReal *burnt_mass, PetscInt64 *burnt_particles);
-PetscErrorCode CouplingBurn(Simulation &sim);
-PetscErrorCode CouplingBurnParticles(Simulation &sim);
+PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot);
+PetscErrorCode CouplingSummary(Coupling &c, PetscReal *burnt_mass, PetscInt64 *burnt_particles);
+PetscErrorCode CouplingBurn(Coupling &c);
+PetscErrorCode CouplingBurnParticles(Coupling &c);
 
 // The coupling's budget counters (monitor.cxx, checkpoint.cxx), this rank's, cumulative since the
 // start: what burning took from the particles (mass; kinetic energy and stress work; thermal energy
@@ -86,6 +87,6 @@ enum CouplingCounter : int {
   kPressureWorkHeld,    // of that work, what no gas paid (a node with no gas around it, or beyond half a gas's temperature in a step)
   kNumCouplingCounters
 };
-PetscReal *CouplingCounters(Simulation &sim); // kNumCouplingCounters values
+PetscReal *CouplingCounters(Coupling &c); // kNumCouplingCounters values
 
 } // namespace burst

@@ -7,6 +7,8 @@
 namespace burst {
 
 struct Coupling {
+  MpmSolver            *mpm = nullptr;       // the two solvers it couples (not owned)
+  IceSolver            *ice = nullptr;
   PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
   std::vector<PetscInt> solid_of;              // MPM material id -> solid index
   PetscReal             p_ref = 101325;
@@ -85,7 +87,7 @@ struct Coupling {
 
 // The impulse of the (p - p_ref) I the particles carry, per node and velocity field, for the work the
 // gases pay (pressure_work.cxx; after the pressure reaches the particles, before P2G(f) uses it).
-PetscErrorCode CouplingAmbientImpulse(Simulation &sim);
+PetscErrorCode CouplingAmbientImpulse(Coupling &c);
 
 // Weight of node (i, j, k) for a cell it bounds: 1/2 per direction, 1 on a domain face.
 inline PetscReal NodeWeight(const IceSolver &ice, const PetscInt node[3])

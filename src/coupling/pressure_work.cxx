@@ -25,29 +25,29 @@ namespace {
 // Particles -> nodes: the impulse -dt V_p (p_p - p_ref) grad N_ip of the ambient stress, as P2G(f)
 // will add it to the internal force (same positions, volumes and weights), per velocity field.
 struct AmbientImpulseKernel {
-  Simulation  &sim;
+  MpmSolver         &mpm;
   Coupling    &c;
   PetscScalar *out;
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = sim.mpm.grid;
+    const Grid          &g = mpm.grid;
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F, *vol, *ambient;
     const PetscInt      *mat;
     PetscFunctionBeginUser;
-    PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
-    SwarmAccess fields(sim.mpm.swarm);
+    PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::ambient_pressure, &ambient));
     PetscCall(fields.Get(field::material, &mat));
-    const PetscReal  dt = sim.dt;
+    const PetscReal  dt = mpm.dt;
     bool             fill; // this step's stencils, from P2G(m, mv) at the same positions
-    Stencil<DIM, S> *stencils = sim.mpm.stencil_cache.Prepare<DIM, S>(n, sim.step, &fill);
+    Stencil<DIM, S> *stencils = mpm.stencil_cache.Prepare<DIM, S>(n, mpm.step, &fill);
     for (PetscInt p = 0; p < n; ++p) {
       Stencil<DIM, S> &st = stencils[p];
       if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
@@ -66,17 +66,17 @@ struct AmbientImpulseKernel {
 };
 } // namespace
 
-PetscErrorCode CouplingAmbientImpulse(Simulation &sim)
+PetscErrorCode CouplingAmbientImpulse(Coupling &c)
 {
-  Coupling    &c = *sim.coupling;
+  MpmSolver   &mpm = *c.mpm;
   PetscScalar *nodes;
   PetscFunctionBeginUser;
   if (!c.charge_pressure_work) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_work, 0, 0, 0, 0));
   PetscCall(VecZeroEntries(c.impulse_local));
   PetscCall(VecGetArray(c.impulse_local, &nodes));
-  AmbientImpulseKernel kernel{sim, c, nodes};
-  PetscCall(DispatchShape(sim.mpm.grid.dim, sim.mpm.shape, kernel));
+  AmbientImpulseKernel kernel{mpm, c, nodes};
+  PetscCall(DispatchShape(mpm.grid.dim, mpm.shape, kernel));
   PetscCall(VecRestoreArray(c.impulse_local, &nodes));
   PetscCall(VecZeroEntries(c.impulse_global));
   PetscCall(DMLocalToGlobal(c.da_impulse, c.impulse_local, ADD_VALUES, c.impulse_global)); // owned nodes: complete
@@ -84,11 +84,11 @@ PetscErrorCode CouplingAmbientImpulse(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingChargePressureWork(Simulation &sim)
+PetscErrorCode CouplingChargePressureWork(Coupling &c)
 {
-  Coupling  &c   = *sim.coupling;
-  IceSolver &ice = *sim.ice;
-  Grid      &g   = sim.mpm.grid;
+  MpmSolver &mpm   = *c.mpm;
+  IceSolver &ice = *c.ice;
+  Grid      &g   = mpm.grid;
   PetscFunctionBeginUser;
   if (!c.charge_pressure_work) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_work, 0, 0, 0, 0));

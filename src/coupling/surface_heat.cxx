@@ -28,23 +28,23 @@
 
 namespace burst {
 
-PetscErrorCode CouplingSurfaceHeatSetUp(Simulation &sim)
+PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c)
 {
-  Coupling &c = *sim.coupling;
+  MpmSolver &mpm = *c.mpm;
   PetscFunctionBeginUser;
   if (c.surface_h > 0) {
-    PetscCheck(!sim.mpm.axisymmetric, sim.comm, PETSC_ERR_SUP, "Option -coupling_surface_heat_transfer is not supported with -axisymmetric yet");
-    PetscCall(DMDACreateCompatibleDMDA(sim.ice->da, 1, &c.da_surface));
+    PetscCheck(!mpm.axisymmetric, mpm.comm, PETSC_ERR_SUP, "Option -coupling_surface_heat_transfer is not supported with -axisymmetric yet");
+    PetscCall(DMDACreateCompatibleDMDA(c.ice->da, 1, &c.da_surface));
     PetscCall(DMCreateGlobalVector(c.da_surface, &c.surface_global));
     PetscCall(DMCreateLocalVector(c.da_surface, &c.surface_local));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
+PetscErrorCode CouplingSurfaceHeat(Coupling &c)
 {
-  Coupling      &c   = *sim.coupling;
-  IceSolver     &ice = *sim.ice;
+  MpmSolver     &mpm   = *c.mpm;
+  IceSolver     &ice = *c.ice;
   PetscScalar   *a, *sink;
   PetscFunctionBeginUser;
   if (c.surface_h <= 0) PetscFunctionReturn(PETSC_SUCCESS);
@@ -165,10 +165,10 @@ PetscErrorCode CouplingSurfaceHeat(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-PetscErrorCode CouplingSurfaceHeatTotal(Simulation &sim, PetscReal *total)
+PetscErrorCode CouplingSurfaceHeatTotal(Coupling &c, PetscReal *total)
 {
   PetscFunctionBeginUser;
-  PetscCallMPI(MPI_Allreduce(&sim.coupling->surface_heat, total, 1, MPIU_REAL, MPI_SUM, sim.comm));
+  PetscCallMPI(MPI_Allreduce(&c.surface_heat, total, 1, MPIU_REAL, MPI_SUM, c.mpm->comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

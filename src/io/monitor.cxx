@@ -206,7 +206,7 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   const auto diagnostics = sim.ice->EnergyDiagnostics(); // kDrag .. kExchangeFallback, in its order
   for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) local[kDrag + k] = *diagnostics[k];
   if (sim.coupling)
-    for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(sim)[k];
+    for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(*sim.coupling)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
   const PetscReal *counter = global + kCoupling; // the coupling's (coupling.hpp)
   b.solid_mass   = r.mass;
@@ -451,9 +451,9 @@ PetscErrorCode WriteSummary(Simulation &sim)
   const PetscReal balance_error = sim.ice ? b.energy_error : r.balance_error; // with gas: the whole system's
   PetscReal  burnt_mass      = 0;
   PetscInt64 burnt_particles = 0;
-  if (sim.coupling) PetscCall(CouplingSummary(sim, &burnt_mass, &burnt_particles));
+  if (sim.coupling) PetscCall(CouplingSummary(*sim.coupling, &burnt_mass, &burnt_particles));
   PetscReal surface_heat = 0; // J the solids took from the gas by -coupling_surface_heat_transfer
-  if (sim.coupling) PetscCall(CouplingSurfaceHeatTotal(sim, &surface_heat));
+  if (sim.coupling) PetscCall(CouplingSurfaceHeatTotal(*sim.coupling, &surface_heat));
   PetscInt64 fallbacks = 0; // cells that fell back to the -p dV energy form
   PetscInt64 fallbacks_remap = 0; // of those, the advection's internal-energy remap
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
