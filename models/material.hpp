@@ -23,22 +23,22 @@ namespace burst {
 // Views of the particle fields that a model may read or write for the local particles.
 // Tensors are row-major 3x3 in every dimension: in 2-D the zz entries carry plane strain.
 struct MaterialPointFields {
-  PetscInt         n        = 0;       // local particle count
-  const PetscInt  *material = nullptr; // material id per particle
-  const PetscReal *L        = nullptr; // velocity gradient at t_{n+1/2}, 1/s
-  const PetscReal *F        = nullptr; // deformation gradient at t_{n+1} (already updated)
-  PetscReal       *stress   = nullptr; // Cauchy stress, Pa (in: t_n, out: t_{n+1})
-  const PetscReal *mass     = nullptr; // kg
-  const PetscReal *volume   = nullptr; // current volume, m^3
-  PetscReal       *temperature = nullptr; // K
-  PetscReal       *wave_speed  = nullptr; // out: longitudinal wave speed, m/s
-  PetscReal       *internal_energy = nullptr; // in/out: accumulated stress work, J
-  const MaterialState *state = nullptr;       // the state fields of every material's StateFields
-  const PetscInt64 *id          = nullptr;    // particle id, the same on any rank count (reproducible draws)
-  const PetscReal  *half_width0 = nullptr;    // bs dim: half-widths at seeding (m), if the particles have them
-  const PetscReal  *volume0     = nullptr;    // else the volume at seeding, m^3
-  PetscInt          dim         = 3;          // spatial dimension of the run
-  PetscReal         time        = 0;          // t_{n+1}, s
+  PetscInt             n               = 0;       // local particle count
+  const PetscInt      *material        = nullptr; // material id per particle
+  const PetscReal     *L               = nullptr; // velocity gradient at t_{n+1/2}, 1/s
+  const PetscReal     *F               = nullptr; // deformation gradient at t_{n+1} (already updated)
+  PetscReal           *stress          = nullptr; // Cauchy stress, Pa (in: t_n, out: t_{n+1})
+  const PetscReal     *mass            = nullptr; // kg
+  const PetscReal     *volume          = nullptr; // current volume, m^3
+  PetscReal           *temperature     = nullptr; // K
+  PetscReal           *wave_speed      = nullptr; // out: longitudinal wave speed, m/s
+  PetscReal           *internal_energy = nullptr; // in/out: accumulated stress work, J
+  const MaterialState *state           = nullptr; // the state fields of every material's StateFields
+  const PetscInt64    *id              = nullptr; // particle id, the same on any rank count (reproducible draws)
+  const PetscReal     *half_width0     = nullptr; // bs dim: half-widths at seeding (m), if the particles have them
+  const PetscReal     *volume0         = nullptr; // else the volume at seeding, m^3
+  PetscInt             dim             = 3;       // spatial dimension of the run
+  PetscReal            time            = 0;       // t_{n+1}, s
 };
 
 // A per-particle field a model registered and wants in the output.
@@ -54,12 +54,22 @@ public:
   // Reads the options under `-<name>_`: density plus the model's own parameters.
   virtual PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) = 0;
   // Creates what depends on the parameters (sub-models); called after SetFromOptions.
-  virtual PetscErrorCode SetUp(MPI_Comm comm) { (void)comm; return PETSC_SUCCESS; }
+  virtual PetscErrorCode SetUp(MPI_Comm comm)
+  {
+    (void)comm;
+    return PETSC_SUCCESS;
+  }
   // The model's per-particle state, in the order the fields are registered (each name once over
   // all materials: materials of one model share their fields).
   virtual std::vector<StateField> StateFields() const { return {}; }
   // Sets the model state of newly seeded particles [begin, end) of this material.
-  virtual PetscErrorCode InitializeState(const MaterialPointFields &f, PetscInt begin, PetscInt end) { (void)f; (void)begin; (void)end; return PETSC_SUCCESS; }
+  virtual PetscErrorCode InitializeState(const MaterialPointFields &f, PetscInt begin, PetscInt end)
+  {
+    (void)f;
+    (void)begin;
+    (void)end;
+    return PETSC_SUCCESS;
+  }
   // Stress update over the particles with material == id: sigma_{n+1} from sigma_n, L, F, dt.
   // Also writes the wave speed and adds the stress work 0.5 (sigma_n + sigma_{n+1}) : D V_mid dt,
   // V_mid = V_{n+1} (1 - tr(D) dt / 2) (second order in dt; see StressWork).
@@ -69,7 +79,11 @@ public:
   // Prints every parameter with its unit.
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
   // A rigid body returns true and its prescribed velocity (m/s).
-  virtual bool IsRigid(PetscReal velocity[3]) const { (void)velocity; return false; }
+  virtual bool IsRigid(PetscReal velocity[3]) const
+  {
+    (void)velocity;
+    return false;
+  }
   // Model fields written with the particles (HDF5/XDMF).
   virtual std::vector<OutputField> OutputFields() const { return {}; }
   // Nonlocal regularisation (src/mpm/nonlocal.cxx): a model that wants the per-particle values it
@@ -82,11 +96,11 @@ public:
   PetscReal   Density() const { return density_; }
   PetscReal   BulkModulus() const { return bulk_modulus_; }
 
-  std::string name_;         // user's name, also the options prefix
-  std::string model_;        // registered model name
-  PetscReal   density_ = -1; // reference mass density, kg/m^3
-  PetscReal   bulk_modulus_ = -1; // reference bulk modulus, Pa (the solid's volume as the gas sees it, ice.md 2.2)
-  PetscInt    id_      = -1; // material id (index in -materials) of its particles
+  std::string name_;                    // user's name, also the options prefix
+  std::string model_;                   // registered model name
+  PetscReal   density_         = -1;    // reference mass density, kg/m^3
+  PetscReal   bulk_modulus_    = -1;    // reference bulk modulus, Pa (the solid's volume as the gas sees it, ice.md 2.2)
+  PetscInt    id_              = -1;    // material id (index in -materials) of its particles
   bool        nonlocal_active_ = false; // the nonlocal average runs after the stress update (set by src/mpm/nonlocal.cxx)
 };
 

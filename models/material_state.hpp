@@ -90,7 +90,7 @@ public:
   MaterialStateStorage()                                        = default;
   MaterialStateStorage(const MaterialStateStorage &)            = delete; // the views point into it
   MaterialStateStorage &operator=(const MaterialStateStorage &) = delete;
-  PetscErrorCode Allocate(const std::vector<StateField> &fields, PetscInt n)
+  PetscErrorCode        Allocate(const std::vector<StateField> &fields, PetscInt n)
   {
     PetscFunctionBeginUser;
     for (const StateField &f : fields) {

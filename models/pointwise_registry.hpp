@@ -15,7 +15,7 @@ namespace burst {
 template <class Model>
 PetscErrorCode PointwiseModelCreate(MPI_Comm comm, const char material[], PetscFunctionList list, const char key[], const char fallback[], const char what[], Model **out)
 {
-  using CreateFn          = PetscErrorCode (*)(Model **);
+  using CreateFn = PetscErrorCode (*)(Model **);
   char              type[256];
   CreateFn          create = nullptr;
   const std::string prefix = std::string(material) + "_", opt = std::string("-") + key + "_type";

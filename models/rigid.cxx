@@ -25,7 +25,7 @@ public:
       if (f.material[p] == id) f.wave_speed[p] = 0;
     return PETSC_SUCCESS;
   }
-  bool           IsRigid(PetscReal v[3]) const override
+  bool IsRigid(PetscReal v[3]) const override
   {
     for (int d = 0; d < 3; ++d) v[d] = velocity[d];
     return true;

@@ -12,6 +12,7 @@ packages=(
   libgtest-dev libbenchmark-dev
   python3 python3-numpy python3-matplotlib python3-h5py
   python3-paraview # pvpython for tests/check_paraview.py
+  clang-format     # tests/check_format.py
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -79,7 +79,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   sim.mpm.surface_heat_fields = sim.phases.Enabled() ? PETSC_TRUE : PETSC_FALSE;
   if (sim.analytic && sim.analytic->HasBodyForce()) {
     const AnalyticSolution *analytic = sim.analytic.get();
-    sim.mpm.body_force = [analytic](const PetscReal X[], PetscReal t, PetscReal b[]) { analytic->BodyForce(X, t, b); };
+    sim.mpm.body_force               = [analytic](const PetscReal X[], PetscReal t, PetscReal b[]) { analytic->BodyForce(X, t, b); };
   }
   // a last picture of the particles when a check finds them invalid, named after the failed step
   sim.mpm.write_snapshot = [&sim](PetscInt step) -> PetscErrorCode {
@@ -90,7 +90,9 @@ static PetscErrorCode SetUp(Simulation &sim)
     sim.step = saved;
     PetscCall(PetscPrintf(sim.comm, "Wrote the particles as they are to %s/particles_%06d.h5 (particles.xmf)\n", sim.output.dir.c_str(), (int)step));
     PetscFunctionReturn(PETSC_SUCCESS);
-  };  PetscCheck(sim.help || !sim.mpm.convert_failed || SwarmHasModelField(sim.mpm, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
+  };
+  PetscCheck(sim.help || !sim.mpm.convert_failed || SwarmHasModelField(sim.mpm, state_field::failed), sim.comm, PETSC_ERR_USER_INPUT,
+             "Option -mpm_convert_failed needs a material that tags failed particles (model elastic_plastic with -<name>_failure_criteria)");
   // 3. The gas's view of the solids (the coupling's equations of state); the swarm registers the
   //    ambient pressure that the coupling asks for
   const Grid &g   = sim.mpm.grid;
@@ -102,7 +104,8 @@ static PetscErrorCode SetUp(Simulation &sim)
     sim.coupling.reset(coupling);
   }
   // the gas grid copies the node ranges when it is created, after the start-up balance
-  PetscCheck(!gas || !g.balance || g.balance_interval == 0, sim.comm, PETSC_ERR_SUP, "Option -grid_balance_interval = %" PetscInt_FMT " is not available with gases (-ice_materials): the gas grid is balanced at start-up only; use -grid_balance_interval 0", g.balance_interval);
+  PetscCheck(!gas || !g.balance || g.balance_interval == 0, sim.comm, PETSC_ERR_SUP,
+             "Option -grid_balance_interval = %" PetscInt_FMT " is not available with gases (-ice_materials): the gas grid is balanced at start-up only; use -grid_balance_interval 0", g.balance_interval);
   sim.mpm.grid.balance_with_gas = gas;
   PetscCheck(sim.help || !sim.mpm.materials.empty() || gas, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
   // 4. Particles, when the scene has solids (-grid_balance sets the node ranges from their work here)
@@ -134,7 +137,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   PetscCall(OutputSetUp(sim));
   PetscCall(CheckpointRestore(sim)); // -restart: the checkpoint's particles, gas and accumulators replace the seeded ones
   SetMpmClock(sim);
-  PetscCall(PhasesCheck(sim));       // the phase the run starts in (a checkpoint's, or the first of -phases)
+  PetscCall(PhasesCheck(sim)); // the phase the run starts in (a checkpoint's, or the first of -phases)
   PetscCall(PetscLogStagePop());
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -145,8 +148,10 @@ static PetscErrorCode View(Simulation &sim)
   const Grid &g      = sim.mpm.grid;
   PetscFunctionBeginUser;
   PetscCall(PetscViewerASCIIPrintf(viewer, "burst: scene %s, %" PetscInt_FMT "-D, %d rank(s)\n", sim.run.scene.c_str(), g.dim, sim.size));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1], g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.mpm.shape], StepSchemeNames[(int)sim.mpm.scheme], (double)sim.mpm.flip_fraction, FUpdateNames[(int)sim.mpm.f_update], (double)sim.mpm.cfl, (double)sim.run.final_time));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  grid %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g x %g m, %d x %d x %d ranks\n", g.cells[0], g.cells[1], g.dim == 3 ? g.cells[2] : 1, (double)g.h[0], (double)g.h[1],
+                                   g.dim == 3 ? (double)g.h[2] : 0.0, g.procs[0], g.procs[1], g.procs[2]));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  shape %s, scheme %s, FLIP fraction %g, F update %s, cfl %g, final time %g s\n", ShapeTypeNames[(int)sim.mpm.shape], StepSchemeNames[(int)sim.mpm.scheme], (double)sim.mpm.flip_fraction,
+                                   FUpdateNames[(int)sim.mpm.f_update], (double)sim.mpm.cfl, (double)sim.run.final_time));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  %lld particles\n", (long long)sim.mpm.total_particles));
   PetscCall(PetscViewerASCIIPrintf(viewer, "  run %s%s\n", CheckpointRunId().c_str(), sim.restarted ? " (continued from its checkpoint)" : ""));
   for (auto &m : sim.mpm.materials) PetscCall(m->View(viewer));
@@ -192,7 +197,7 @@ static PetscErrorCode Run(Simulation &sim)
     PetscBool stop = PETSC_FALSE, phases_done = PETSC_FALSE;
     PetscCall(PhasesAfterStep(sim, &phases_done)); // a switch prints, checkpoints and changes the next step
     PetscCall(CheckRunStops(sim, &stop));
-    stop = (PetscBool)(stop || phases_done);
+    stop            = (PetscBool)(stop || phases_done);
     const bool last = stop || sim.run.Reached(sim.time, sim.step);
     PetscCall(Monitor(sim, last ? PETSC_TRUE : PETSC_FALSE));
     if (sim.HasParticles()) PetscCall(FragmentsMonitor(sim.mpm));
@@ -222,8 +227,10 @@ static int RefuseOptionFiles(int argc, char **argv)
   for (const char *v : {"OMPI_COMM_WORLD_RANK", "PMIX_RANK", "PMI_RANK"})
     if (!rank) rank = std::getenv(v);
   if (!rank || !std::strcmp(rank, "0"))
-    std::fprintf(stderr, "[0]PETSC ERROR: --------------------- Error Message --------------------------------------------------------------\n"
-                         "[0]PETSC ERROR: %s\n", error.c_str());
+    std::fprintf(stderr,
+                 "[0]PETSC ERROR: --------------------- Error Message --------------------------------------------------------------\n"
+                 "[0]PETSC ERROR: %s\n",
+                 error.c_str());
   return PETSC_ERR_USER_INPUT;
 }
 
@@ -279,7 +286,8 @@ int main(int argc, char **argv)
     PetscMPIInt rank = 0;
     MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
     RunLockRelease();
-    std::fprintf(stderr, "burst: out of memory on rank %d during %s (std::bad_alloc); the set-up's estimate did not foresee it: give fewer particles or cells, more ranks, or a smaller -max_memory so that the set-up refuses such a run\n", (int)rank, main_phase);
+    std::fprintf(stderr, "burst: out of memory on rank %d during %s (std::bad_alloc); the set-up's estimate did not foresee it: give fewer particles or cells, more ranks, or a smaller -max_memory so that the set-up refuses such a run\n", (int)rank,
+                 main_phase);
     MPI_Abort(PETSC_COMM_WORLD, PETSC_ERR_MEM);
   } catch (const std::exception &e) {
     PetscMPIInt rank = 0;

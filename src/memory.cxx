@@ -55,7 +55,8 @@ PetscErrorCode MemoryCheck(MPI_Comm comm, const char what[], PetscReal bytes_on_
   PetscCallMPI(MPI_Allreduce(&bytes_on_rank, &most, 1, MPIU_REAL, MPI_MAX, comm));
   PetscCall(MemoryAvailablePerRank(comm, &available));
   PetscCall(PetscInfo(nullptr, "Memory estimate for %s: %g bytes on the fullest rank, %g available per rank\n", what, (double)most, (double)available));
-  PetscCheck(most <= available, comm, PETSC_ERR_MEM, "%s needs about %.3g GB on a rank (set-up's estimate), more than the %.3g GB a rank has (-max_memory, default MemAvailable over the ranks on the node): %s", what, (double)(most / 1e9), (double)(available / 1e9), advice);
+  PetscCheck(most <= available, comm, PETSC_ERR_MEM, "%s needs about %.3g GB on a rank (set-up's estimate), more than the %.3g GB a rank has (-max_memory, default MemAvailable over the ranks on the node): %s", what, (double)(most / 1e9),
+             (double)(available / 1e9), advice);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 

@@ -12,10 +12,10 @@
 
 namespace burst {
 
-constexpr PetscReal kMemoryParticleFactor  = 1.7;
-constexpr PetscReal kMemoryNodeBytes2d     = 300;
-constexpr PetscReal kMemoryNodeBytes3d     = 355;
-constexpr PetscReal kMemoryCellEntryBytes  = 48;
+constexpr PetscReal kMemoryParticleFactor = 1.7;
+constexpr PetscReal kMemoryNodeBytes2d    = 300;
+constexpr PetscReal kMemoryNodeBytes3d    = 355;
+constexpr PetscReal kMemoryCellEntryBytes = 48;
 
 // What one rank may use (bytes): -max_memory, or MemAvailable over the ranks on this node.
 PetscErrorCode MemoryAvailablePerRank(MPI_Comm comm, PetscReal *bytes);

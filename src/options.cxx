@@ -44,22 +44,26 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.mpm.flip_fraction, &sim.mpm.flip_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.mpm.flip_fraction, 0, 1, PETSC_FALSE));
   choice = (int)sim.mpm.transfer;
-  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_transfer", "Particle velocity transfer: flip_pic (the -mpm_flip_fraction blend), apic (affine PIC, Jiang et al. 2015) or xpic (XPIC(m), Hammerquist & Nairn 2017); default flip_pic", TransferNames, 3, &choice, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_transfer", "Particle velocity transfer: flip_pic (the -mpm_flip_fraction blend), apic (affine PIC, Jiang et al. 2015) or xpic (XPIC(m), Hammerquist & Nairn 2017); default flip_pic", TransferNames,
+                          3, &choice, nullptr));
   sim.mpm.transfer = (Transfer)choice;
   PetscCall(PetscOptionsInt("-mpm_xpic_order", "Order m of XPIC(m), in [1, 8] (m = 1 is PIC); default 2", "", sim.mpm.xpic_order, &sim.mpm.xpic_order, nullptr));
   PetscCheck(sim.mpm.xpic_order >= 1 && sim.mpm.xpic_order <= 8, sim.comm, PETSC_ERR_USER_INPUT, "Option -mpm_xpic_order = %" PetscInt_FMT " is out of range: it must be in [1, 8]", sim.mpm.xpic_order);
-  PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.mpm.axisymmetric, &sim.mpm.axisymmetric, nullptr));
-  PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.run.stop_kinetic_fraction, &sim.run.stop_kinetic_fraction, nullptr));
+  PetscCall(PetscOptionsBool("-axisymmetric", "Axisymmetric MPM with -dim 2: x is the radius r >= 0, y the axis; hoop strain rate v_r/r and hoop stress in the internal force; masses and volumes per radian; default false", "", sim.mpm.axisymmetric,
+                             &sim.mpm.axisymmetric, nullptr));
+  PetscCall(PetscOptionsReal("-stop_kinetic_fraction", "Stop once the kinetic energy has fallen below this fraction of its initial value (checked at monitor steps), in [0, 1); 0 = never (default)", "", sim.run.stop_kinetic_fraction,
+                             &sim.run.stop_kinetic_fraction, nullptr));
   PetscCheck(sim.run.stop_kinetic_fraction >= 0 && sim.run.stop_kinetic_fraction < 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -stop_kinetic_fraction = %g is out of range: it must be in [0, 1)", (double)sim.run.stop_kinetic_fraction);
-  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)", "", sim.run.energy_growth_limit, &sim.run.energy_growth_limit, nullptr));
+  PetscCall(PetscOptionsReal("-mpm_energy_growth_limit", "Stop with an error when the total energy has grown by more than this fraction of the largest energy seen (an unstable run: energy from nowhere), checked at monitor steps; 0 = off (default)",
+                             "", sim.run.energy_growth_limit, &sim.run.energy_growth_limit, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_energy_growth_limit", sim.run.energy_growth_limit, 0, PETSC_MAX_REAL, PETSC_FALSE));
   choice = (int)sim.mpm.f_update;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_F_update", "Deformation gradient update: F <- (I + L dt) F, or F <- exp(L dt) F", FUpdateNames, 2, &choice, nullptr));
   sim.mpm.f_update = (FUpdate)choice;
-  choice = (int)sim.mpm.shape;
+  choice           = (int)sim.mpm.shape;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_shape_type", "Interpolator (shape functions)", ShapeTypeNames, 4, &choice, nullptr));
   sim.mpm.shape = (ShapeType)choice;
-  choice = (int)sim.mpm.outside;
+  choice        = (int)sim.mpm.outside;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_outside_domain", "A particle leaving the domain: stop with an error, or remove it and count it", OutsidePolicyNames, 2, &choice, nullptr));
   sim.mpm.outside = (OutsidePolicy)choice;
   {
@@ -75,12 +79,15 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   PetscCall(PetscOptionsBool("-mpm_convert_failed", "Failed particles join a velocity field of their own, meeting the intact material only through contact (the paper's conversion)", "", sim.mpm.convert_failed, &sim.mpm.convert_failed, nullptr));
   {
     char buf[256] = "";
-    PetscCall(PetscOptionsString("-mpm_contact_material", "Name of a material (of -materials) that moves in a velocity field of its own and meets the others only through contact (-mpm_contact_type), e.g. an explosive that burns away from its container; default none", "", buf, buf, sizeof(buf), &set));
+    PetscCall(PetscOptionsString("-mpm_contact_material",
+                                 "Name of a material (of -materials) that moves in a velocity field of its own and meets the others only through contact (-mpm_contact_type), e.g. an explosive that burns away from its container; default none", "",
+                                 buf, buf, sizeof(buf), &set));
     if (set) sim.mpm.contact_material_name = buf;
     PetscCheck(!(set && sim.mpm.convert_failed), sim.comm, PETSC_ERR_SUP, "Options -mpm_contact_material and -mpm_convert_failed cannot be combined yet (each needs the second velocity field)");
   }
   choice = (int)sim.mpm.contact;
-  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_contact_type", "Contact between velocity fields: no_slip (one velocity where both are present) or friction (Bardenhagen et al. 2001: only approaching fields interact, Coulomb friction)", ContactTypeNames, 2, &choice, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_contact_type", "Contact between velocity fields: no_slip (one velocity where both are present) or friction (Bardenhagen et al. 2001: only approaching fields interact, Coulomb friction)",
+                          ContactTypeNames, 2, &choice, nullptr));
   sim.mpm.contact = (ContactType)choice;
   PetscCall(PetscOptionsReal("-mpm_contact_friction", "Coulomb friction coefficient of the friction contact (-), >= 0", "", sim.mpm.friction, &sim.mpm.friction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_contact_friction", sim.mpm.friction, 0, PETSC_MAX_REAL, PETSC_FALSE));

@@ -27,9 +27,9 @@
 namespace burst {
 
 namespace {
-std::set<std::string> known;      // option names (without the dash) seen in help lines
-bool                  recording = false;
-bool                  inserted_help = false;
+std::set<std::string> known; // option names (without the dash) seen in help lines
+bool                  recording                                  = false;
+bool                  inserted_help                              = false;
 PetscErrorCode (*saved_help_printf)(MPI_Comm, const char[], ...) = nullptr;
 
 // Keeps the option name of a help line, "  -mpm_shape_type <now linear ...>: ...".
@@ -58,7 +58,7 @@ PetscErrorCode RecordHelpLine(MPI_Comm, const char format[], ...)
 // stdout in pieces, "  -name <now a : formerly a>: text (one of)", " a", " b", " (Manual)\n": those
 // are recorded and swallowed up to the newline; everything else is printed as usual.
 PetscErrorCode (*saved_vfprintf)(FILE *, const char[], va_list) = nullptr;
-bool in_help_line = false;
+bool in_help_line                                               = false;
 
 PetscErrorCode RecordOrPrint(FILE *fd, const char format[], va_list args)
 {
@@ -81,10 +81,35 @@ PetscErrorCode RecordOrPrint(FILE *fd, const char format[], va_list args)
 
 // PETSc's options read after set-up: in PetscFinalize (pinit.c, 3.18), and the *ViewFromOptions
 // of objects in use (read at every KSPSolve, MatAssemblyEnd, VecAssemblyEnd, DMSetUp/DMView).
-const char *const finalize_options[] = {"options_view", "options_left", "objects_dump", "mpidump", "malloc_dump", "malloc_view", "malloc_view_threshold", "memory_view", "citations", "log_view", "log_view_memory", "log_view_gpu_time", "log_all", "log", "log_mpe", "get_total_flops", "x_virtual", "saw_options", "mpi_linear_solver_server", "options_allow_unused"};
+const char *const finalize_options[] =
+  {"options_view", "options_left", "objects_dump", "mpidump",         "malloc_dump", "malloc_view", "malloc_view_threshold",    "memory_view",         "citations", "log_view", "log_view_memory", "log_view_gpu_time",
+   "log_all",      "log",          "log_mpe",      "get_total_flops", "x_virtual",   "saw_options", "mpi_linear_solver_server", "options_allow_unused"};
 // Object prefixes burst gives PETSc objects, and the viewer options read when those objects are used.
+// clang-format off (a table laid out by hand)
 const char *const object_prefixes[] = {"", "ice_pressure_", "swarm_"};
-const char *const object_views[]    = {"ksp_view", "ksp_converged_reason", "ksp_view_pre", "ksp_view_mat", "ksp_view_pmat", "ksp_view_rhs", "ksp_view_solution", "ksp_view_eigenvalues", "ksp_view_singularvalues", "ksp_view_final_residual", "ksp_converged_rate", "ksp_view_mat_explicit", "ksp_view_preconditioned_operator_explicit", "ksp_view_diagonal_scale", "ksp_compute_eigenvalues", "ksp_compute_singularvalues", "pc_view", "mat_view", "vec_view", "dm_view", "da_view", "is_view"};
+const char *const object_views[]    = {"ksp_view",
+                                       "ksp_converged_reason",
+                                       "ksp_view_pre",
+                                       "ksp_view_mat",
+                                       "ksp_view_pmat",
+                                       "ksp_view_rhs",
+                                       "ksp_view_solution",
+                                       "ksp_view_eigenvalues",
+                                       "ksp_view_singularvalues",
+                                       "ksp_view_final_residual",
+                                       "ksp_converged_rate",
+                                       "ksp_view_mat_explicit",
+                                       "ksp_view_preconditioned_operator_explicit",
+                                       "ksp_view_diagonal_scale",
+                                       "ksp_compute_eigenvalues",
+                                       "ksp_compute_singularvalues",
+                                       "pc_view",
+                                       "mat_view",
+                                       "vec_view",
+                                       "dm_view",
+                                       "da_view",
+                                       "is_view"};
+// clang-format on
 
 bool ReadLater(const std::string &name)
 {
@@ -118,7 +143,7 @@ size_t EditDistance(const std::string &a, const std::string &b)
 // Up to three nearest known names within a distance that grows with the length.
 std::string Suggestions(const std::string &name, const std::set<std::string> &candidates)
 {
-  const size_t                                  limit = std::max<size_t>(2, name.size() / 4);
+  const size_t                                limit = std::max<size_t>(2, name.size() / 4);
   std::vector<std::pair<size_t, std::string>> near;
   for (const std::string &c : candidates) {
     if (c == name) continue;
@@ -138,7 +163,7 @@ namespace {
 std::vector<std::pair<std::string, std::string>> GivenOptions()
 {
   std::vector<std::pair<std::string, std::string>> out;
-  char *all = nullptr;
+  char                                            *all = nullptr;
   if (PetscOptionsGetAll(nullptr, &all)) return out;
   const std::string s(all);
   PetscFree(all);
@@ -146,7 +171,7 @@ std::vector<std::pair<std::string, std::string>> GivenOptions()
   while (pos < s.size()) {
     const size_t start = s.find_first_not_of(' ', pos);
     if (start == std::string::npos) break;
-    const size_t end = std::min(s.find(' ', start), s.size());
+    const size_t      end   = std::min(s.find(' ', start), s.size());
     const std::string token = s.substr(start, end - start);
     if (token.size() > 1 && token[0] == '-' && std::isalpha((unsigned char)token[1])) out.push_back({token, ""});
     else if (!out.empty()) out.back().second += (out.back().second.empty() ? "" : " ") + token;
@@ -313,13 +338,16 @@ PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> 
     for (const std::string &c : known) {
       // selectors: -<prefix>_type(s) of a sub-model, -<material>_model of a material (a scene that
       // switches its charge to another model leaves the first model's parameters unread)
-      const auto   ends = [&](const char *suffix) { const size_t k = std::strlen(suffix); return c.size() > k && c.compare(c.size() - k, k, suffix) == 0; };
-      const size_t cut  = ends("_type") ? c.size() - 4 : ends("_types") ? c.size() - 5 : ends("_model") ? c.size() - 5 : 0;
+      const auto ends = [&](const char *suffix) {
+        const size_t k = std::strlen(suffix);
+        return c.size() > k && c.compare(c.size() - k, k, suffix) == 0;
+      };
+      const size_t cut = ends("_type") ? c.size() - 4 : ends("_types") ? c.size() - 5 : ends("_model") ? c.size() - 5 : 0;
       if (cut && u.size() > cut && u.compare(0, cut, c, 0, cut) == 0 && c.size() > selector.size()) selector = c;
     }
     if (!selector.empty() && nearest > 2) {
-      char     value[256] = "";
-      PetscBool set       = PETSC_FALSE;
+      char      value[256] = "";
+      PetscBool set        = PETSC_FALSE;
       PetscCall(PetscOptionsGetString(nullptr, nullptr, ("-" + selector).c_str(), value, sizeof(value), &set));
       PetscCall(PetscPrintf(comm, "Note: option -%s is not read by the model this run selects (-%s%s%s); ignored\n", u.c_str(), selector.c_str(), set ? " " : "", set ? value : " default"));
       continue;

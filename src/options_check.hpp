@@ -25,7 +25,7 @@ struct OptionsFeature {
   std::string prefix, contains, suffix; // an option matches: starts with prefix, contains, ends with suffix
   std::string needs;                    // the switch that turns the feature on, for the note
   bool        on;
-  bool        read_when_off = false;    // set-up reads these even when the feature is off: noted when given
+  bool        read_when_off = false; // set-up reads these even when the feature is off: noted when given
 };
 PetscErrorCode OptionsCheckEnd(MPI_Comm comm, const std::vector<OptionsFeature> &features);
 

@@ -59,9 +59,10 @@ std::string FollowTokens(std::vector<Include> &chain, const std::vector<std::pai
     }
     const std::string name = tokens[i + 1].first, real = RealPath(name);
     for (const Include &inc : chain)
-      if (inc.real == real) return (chain.size() == 1 ? "Option file " + chain.back().file + " includes itself" : std::string("Option files include each other in a loop")) + ": chain of option files " + Chain(chain, name) + " (-options_file on line " + std::to_string(line) + " of " + chain.back().file + "); remove the -options_file that closes the loop";
-    if ((int)chain.size() + 1 > kMaxOptionFileDepth)
-      return "Option files nested deeper than " + std::to_string(kMaxOptionFileDepth) + " levels: chain of option files " + Chain(chain, name);
+      if (inc.real == real)
+        return (chain.size() == 1 ? "Option file " + chain.back().file + " includes itself" : std::string("Option files include each other in a loop")) + ": chain of option files " + Chain(chain, name) + " (-options_file on line " +
+               std::to_string(line) + " of " + chain.back().file + "); remove the -options_file that closes the loop";
+    if ((int)chain.size() + 1 > kMaxOptionFileDepth) return "Option files nested deeper than " + std::to_string(kMaxOptionFileDepth) + " levels: chain of option files " + Chain(chain, name);
     chain.push_back({name, real, line});
     const std::string error = CheckFile(chain);
     chain.pop_back();
@@ -74,18 +75,19 @@ std::string FollowTokens(std::vector<Include> &chain, const std::vector<std::pai
 std::string CheckFile(std::vector<Include> &chain)
 {
   const std::string &file = chain.back().file;
-  std::ifstream      in(file, std::ios::binary);
+
+  std::ifstream in(file, std::ios::binary);
   if (!in) return ""; // PETSc says it cannot open it
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  const std::string                        text = buffer.str();
   std::vector<std::pair<std::string, int>> tokens;
-  int    line  = 1;
-  size_t start = 0;
+  int                                      line  = 1;
+  size_t                                   start = 0;
   while (start <= text.size()) {
     size_t end = text.find('\n', start);
     if (end == std::string::npos) end = text.size();
-    std::string l = text.substr(start, end - start);
+    std::string  l   = text.substr(start, end - start);
     const size_t nul = l.find('\0');
     if (nul != std::string::npos) {
       std::string msg = "Option file " + file + ", line " + std::to_string(line) + ", column " + std::to_string(nul + 1) + ": a NUL byte (PETSc would drop the rest of the line); remove it";
@@ -106,7 +108,8 @@ std::string CheckFile(std::vector<Include> &chain)
 std::vector<std::pair<std::string, int>> Words(const std::string &s)
 {
   std::vector<std::pair<std::string, int>> out;
-  std::istringstream                       words(s);
+
+  std::istringstream words(s);
   for (std::string w; words >> w;) out.push_back({w, 0});
   return out;
 }
@@ -114,8 +117,8 @@ std::vector<std::pair<std::string, int>> Words(const std::string &s)
 
 std::string CheckOptionFiles(int argc, char **argv)
 {
-  std::vector<Include> chain;
-  bool                 skip_rc = false;
+  std::vector<Include>                     chain;
+  bool                                     skip_rc = false;
   std::vector<std::pair<std::string, int>> args;
   for (int i = 1; i < argc; ++i) {
     args.push_back({argv[i], 0});

@@ -56,7 +56,7 @@ PetscErrorCode LargestParticle(Simulation &sim, const char name[], PetscInt mate
   struct {
     PetscReal   value;
     PetscMPIInt rank;
-  } local = {-PETSC_MAX_REAL, sim.rank}, global;
+  } local       = {-PETSC_MAX_REAL, sim.rank}, global;
   PetscInt best = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
@@ -111,7 +111,6 @@ PetscErrorCode AdvanceKinetics(Simulation &sim)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-
 // The hottest gas (a gas filling at least half of its cell), K: the flame's temperature.
 PetscErrorCode HottestGas(Simulation &sim, PetscReal *T_max)
 {
@@ -157,7 +156,8 @@ PetscErrorCode FinishMeasurement(Simulation &sim)
   PetscReal       *G;
   PetscReal        sums[2] = {0, 0}, global[2]; // [rate now, heat received over the window]
   PetscFunctionBeginUser;
-  PetscCheck(ph.window_length > 0, sim.comm, PETSC_ERR_USER_INPUT, "Phases: the heat-up ended at t = %g s before its measurement window began (-phase_flux_window %g s, -phase_heatup_end_time %g s)", (double)sim.time, (double)ph.flux_window, (double)ph.heatup_end_time);
+  PetscCheck(ph.window_length > 0, sim.comm, PETSC_ERR_USER_INPUT, "Phases: the heat-up ended at t = %g s before its measurement window began (-phase_flux_window %g s, -phase_heatup_end_time %g s)", (double)sim.time, (double)ph.flux_window,
+             (double)ph.heatup_end_time);
   if (ph.flame_temperature <= 0) PetscCall(HottestGas(sim, &ph.flame_temperature));
   PetscCall(DMSwarmGetLocalSize(sim.mpm.swarm, &n));
   SwarmAccess fields(sim.mpm.swarm);
@@ -175,7 +175,8 @@ PetscErrorCode FinishMeasurement(Simulation &sim)
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(sums, global, 2, MPIU_REAL, MPI_SUM, sim.comm));
   ph.surface_heat_rate = global[0];
-  PetscCall(PetscPrintf(sim.comm, "  surface heat measured over [%g, %g] s: %g J from the gas, %g W now (flame temperature %g K%s)\n", (double)ph.window_start, (double)(ph.window_start + W), (double)global[1], (double)global[0], (double)Tf, sim.mpm.grid.dim == 2 ? "; per metre of depth" : ""));
+  PetscCall(PetscPrintf(sim.comm, "  surface heat measured over [%g, %g] s: %g J from the gas, %g W now (flame temperature %g K%s)\n", (double)ph.window_start, (double)(ph.window_start + W), (double)global[1], (double)global[0], (double)Tf,
+                        sim.mpm.grid.dim == 2 ? "; per metre of depth" : ""));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -203,37 +204,44 @@ PetscErrorCode SwitchTo(Simulation &sim, RunPhase to, const std::string &why)
 
 PetscErrorCode PhasesSetUp(Simulation &sim)
 {
-  Phases   &ph = sim.phases;
+  Phases   &ph        = sim.phases;
   char      text[256] = "mechanics", ignition[256] = "";
   PetscBool set = PETSC_FALSE, has_window = PETSC_FALSE, has_material = PETSC_FALSE;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Run phases: a container in a fire (src/phases.hpp)", "Phases");
-  PetscCall(PetscOptionsString("-phases", "The run's phases, a comma-separated list in the order heatup,heat_only,mechanics (heatup: gas around solids held still; heat_only: conduction under the measured surface heat; mechanics: the full step)", "", text, text, sizeof(text), &set));
+  PetscCall(PetscOptionsString("-phases", "The run's phases, a comma-separated list in the order heatup,heat_only,mechanics (heatup: gas around solids held still; heat_only: conduction under the measured surface heat; mechanics: the full step)", "",
+                               text, text, sizeof(text), &set));
   PetscCall(PetscOptionsReal("-phase_heatup_end_time", "heatup: the time at which it ends (s), > 0", "", ph.heatup_end_time, &ph.heatup_end_time, nullptr));
   PetscCall(PetscOptionsReal("-phase_flux_window", "heatup: the surface heat is measured over this last part of it (s), in (0, -phase_heatup_end_time]; default: its last fifth", "", ph.flux_window, &ph.flux_window, &has_window));
   PetscCall(PetscOptionsReal("-phase_heatup_sound_speed_knob", "heatup: k of the gas CFL, in [0, 1] (0: the flow's speed alone sets the step, as the reference's heat-up)", "", ph.heatup_sound_speed_knob, &ph.heatup_sound_speed_knob, nullptr));
   PetscCall(PetscOptionsReal("-phase_heatup_dt_max", "heatup: the largest time step (s), > 0", "", ph.heatup_dt_max, &ph.heatup_dt_max, nullptr));
   PetscCall(PetscOptionsReal("-phase_heat_only_dt", "heat_only: the time step (s), > 0 (conduction sub-steps within it as -mpm_heat_cfl asks)", "", ph.heat_only_dt, &ph.heat_only_dt, nullptr));
   PetscCall(PetscOptionsReal("-phase_flame_temperature", "T_f of the surface heat G_p (T_f - T_p) (K), >= 0; 0: the hottest gas at the end of the heat-up", "", ph.flame_temperature, &ph.flame_temperature, nullptr));
-  PetscCall(PetscOptionsReal("-phase_ignition_temperature", "The run goes to mechanics once a particle of the ignition material is this hot (K), >= 0; 0: its burn model's ignition temperature", "", ph.ignition_temperature, &ph.ignition_temperature, nullptr));
+  PetscCall(PetscOptionsReal("-phase_ignition_temperature", "The run goes to mechanics once a particle of the ignition material is this hot (K), >= 0; 0: its burn model's ignition temperature", "", ph.ignition_temperature, &ph.ignition_temperature,
+                             nullptr));
   {
     const char *const criteria[] = {"burn_model", "temperature", "kinetics"};
     int               choice     = ph.ignition_by_temperature ? 1 : ph.ignition_by_kinetics ? 2 : 0;
-    PetscCall(OptionsChoice(PetscOptionsObject, "-phase_ignition", "What ends the heat-up and heat_only: burn_model (its ignition criterion holds in a cell), temperature (a particle of the ignition material reaches -phase_ignition_temperature) or kinetics (one of them has decomposed -phase_kinetics_fraction of its mass)", criteria, 3, &choice, nullptr));
+    PetscCall(OptionsChoice(PetscOptionsObject, "-phase_ignition",
+                            "What ends the heat-up and heat_only: burn_model (its ignition criterion holds in a cell), temperature (a particle of the ignition material reaches -phase_ignition_temperature) or kinetics (one of them has decomposed "
+                            "-phase_kinetics_fraction of its mass)",
+                            criteria, 3, &choice, nullptr));
     ph.ignition_by_temperature = (PetscBool)(choice == 1);
     ph.ignition_by_kinetics    = (PetscBool)(choice == 2);
   }
   PetscCall(PetscOptionsReal("-phase_kinetics_fraction", "With -phase_ignition kinetics: the reacted mass fraction of a particle that counts as ignition, in (0, 1)", "", ph.kinetics_fraction, &ph.kinetics_fraction, nullptr));
   PetscCall(PetscOptionsString("-phase_ignition_material", "The solid whose temperature decides ignition; default: the one with a burn model (-<material>_burn_type)", "", ignition, ignition, sizeof(ignition), &has_material));
   PetscCall(PetscOptionsReal("-phase_mechanics_duration", "mechanics: the run ends this long after they began (s), >= 0; 0: at -final_time (an ignition time is not known before the run)", "", ph.mechanics_duration, &ph.mechanics_duration, nullptr));
-  PetscCall(PetscOptionsBool("-phase_mechanics_explicit", "mechanics: the gas pressure explicit (the exploding scenes' step; the heat-up needs -ice_pressure_solver semi_implicit for its long steps), with the sound-speed knob 1", "", ph.mechanics_explicit, &ph.mechanics_explicit, nullptr));
+  PetscCall(PetscOptionsBool("-phase_mechanics_explicit", "mechanics: the gas pressure explicit (the exploding scenes' step; the heat-up needs -ice_pressure_solver semi_implicit for its long steps), with the sound-speed knob 1", "",
+                             ph.mechanics_explicit, &ph.mechanics_explicit, nullptr));
   PetscCall(PetscOptionsBool("-phase_checkpoint", "Write a checkpoint at each phase switch, kept as phase_<phase>_<step>.h5", "", ph.write_checkpoint, &ph.write_checkpoint, nullptr));
   PetscOptionsEnd();
   if (sim.help) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(ParsePhases(sim.comm, text, ph.order));
   PetscCall(CheckRange(sim.comm, "-phase_heatup_end_time", ph.heatup_end_time, 0, PETSC_MAX_REAL, PETSC_TRUE));
   if (!has_window) ph.flux_window = 0.2 * ph.heatup_end_time;
-  PetscCheck(ph.flux_window > 0 && ph.flux_window <= ph.heatup_end_time, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_flux_window = %g s is out of range: it must be in (0, -phase_heatup_end_time = %g s]", (double)ph.flux_window, (double)ph.heatup_end_time);
+  PetscCheck(ph.flux_window > 0 && ph.flux_window <= ph.heatup_end_time, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_flux_window = %g s is out of range: it must be in (0, -phase_heatup_end_time = %g s]", (double)ph.flux_window,
+             (double)ph.heatup_end_time);
   PetscCall(CheckRange(sim.comm, "-phase_heatup_sound_speed_knob", ph.heatup_sound_speed_knob, 0, 1, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-phase_heatup_dt_max", ph.heatup_dt_max, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_heat_only_dt", ph.heat_only_dt, 0, PETSC_MAX_REAL, PETSC_TRUE));
@@ -273,7 +281,8 @@ PetscErrorCode PhasesCheck(Simulation &sim)
     for (size_t m = 0; m < sim.mpm.materials.size(); ++m) {
       PetscCall(CouplingIgnition(*sim.coupling, (PetscInt)m, &model, &T_model));
       if (model == "none") continue;
-      PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.mpm.materials[ph.ignition_material]->Name(), sim.mpm.materials[m]->Name());
+      PetscCheck(ph.ignition_material < 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_material: both %s and %s burn; name the one whose temperature decides ignition", sim.mpm.materials[ph.ignition_material]->Name(),
+                 sim.mpm.materials[m]->Name());
       ph.ignition_material = (PetscInt)m;
     }
     PetscCheck(ph.ignition_material >= 0, sim.comm, PETSC_ERR_USER_INPUT, "Option -phases: no solid burns (-<material>_burn_type); give -phase_ignition_material and -phase_ignition_temperature");
@@ -292,15 +301,20 @@ PetscErrorCode PhasesCheck(Simulation &sim)
     PetscCall(ph.kinetics->SetFromOptions(sim.comm, sim.mpm.materials[ph.ignition_material]->Name()));
     ph.kinetics->par.h = 0; // the particle keeps its reaction heat; conduction carries it on
   }
-  PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)", sim.mpm.materials[ph.ignition_material]->Name(), model.c_str());
+  PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)",
+             sim.mpm.materials[ph.ignition_material]->Name(), model.c_str());
   ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
   ph.semi_implicit_gas          = (PetscBool)(sim.ice->pressure_solver == IcePressureSolver::SemiImplicit);
   if (ph.switch_time[(int)ph.order[0]] < 0) ph.switch_time[(int)ph.order[0]] = sim.time;
   PetscCall(ApplyPhase(sim));
   std::string list;
   for (RunPhase p : ph.order) list += (list.empty() ? "" : " -> ") + std::string(RunPhaseName(p));
-  if (ph.ignition_by_kinetics) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle's thermal decomposition reaching %g of its mass\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.kinetics_fraction));
-  else if (ph.ignition_by_temperature) PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature, ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
+  if (ph.ignition_by_kinetics)
+    PetscCall(
+      PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle's thermal decomposition reaching %g of its mass\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.kinetics_fraction));
+  else if (ph.ignition_by_temperature)
+    PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: a %s particle at %g K%s\n", list.c_str(), RunPhaseName(ph.Current()), sim.mpm.materials[ph.ignition_material]->Name(), (double)ph.ignition_temperature,
+                          ph.ignition_temperature == T_model ? (" (" + model + "'s)").c_str() : ""));
   else PetscCall(PetscPrintf(sim.comm, "Phases: %s (now %s); ignition: %s's criterion in a cell of %s\n", list.c_str(), RunPhaseName(ph.Current()), model.c_str(), sim.mpm.materials[ph.ignition_material]->Name()));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -363,19 +377,21 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
   if (ph.ignition_by_kinetics) {
     PetscCall(AdvanceKinetics(sim));
     PetscReal  x[3] = {0, 0, 0}, x_hot[3];
-    PetscInt64 id = -1, id_hot;
+    PetscInt64 id   = -1, id_hot;
     PetscReal  most = 0;
     PetscCall(LargestParticle(sim, field::reacted_fraction, ph.ignition_material, &most, &id, x));
     PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id_hot, x_hot));
     if (most >= ph.kinetics_fraction) {
-      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m has decomposed %g of its mass (-phase_kinetics_fraction %g), at %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1],
+                    (double)x[2], (double)most, (double)ph.kinetics_fraction, (double)ph.hottest_ignition);
     }
   } else if (ph.ignition_by_temperature) {
     PetscReal  x[3] = {0, 0, 0};
-    PetscInt64 id    = -1;
+    PetscInt64 id   = -1;
     PetscCall(LargestParticle(sim, field::temperature, ph.ignition_material, &ph.hottest_ignition, &id, x));
     if (ph.hottest_ignition >= ph.ignition_temperature)
-      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition, (double)ph.ignition_temperature);
+      std::snprintf(why, sizeof(why), "ignition: %s particle %lld at (%g, %g, %g) m is at %g K >= %g K", sim.mpm.materials[ph.ignition_material]->Name(), (long long)id, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition,
+                    (double)ph.ignition_temperature);
   } else {
     // the burn model's own test on the cells: heat_only moves only the particles' temperatures, so
     // they are projected first (the heat-up's step projected them at its start)
@@ -404,14 +420,16 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
     PetscInt64 cells = 0;
     PetscReal  x[3];
     if (check) PetscCall(CouplingIgnitingCells(*sim.coupling, &cells, x, &ph.hottest_ignition));
-    if (cells > 0) std::snprintf(why, sizeof(why), "ignition: the burn model's criterion holds in %lld cell(s); the hottest reactant surface cell, at (%g, %g, %g) m, is at %g K", (long long)cells, (double)x[0], (double)x[1], (double)x[2], (double)ph.hottest_ignition);
+    if (cells > 0)
+      std::snprintf(why, sizeof(why), "ignition: the burn model's criterion holds in %lld cell(s); the hottest reactant surface cell, at (%g, %g, %g) m, is at %g K", (long long)cells, (double)x[0], (double)x[1], (double)x[2],
+                    (double)ph.hottest_ignition);
   }
   if (why[0]) {
     if (Has(ph, RunPhase::Mechanics)) PetscCall(SwitchTo(sim, RunPhase::Mechanics, why));
     else {
       PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s (-phases has no mechanics)\n", sim.step, (double)sim.time, why));
       ph.switch_time[(int)RunPhase::Mechanics] = sim.time; // the ignition time, for the summary
-      *stop = PETSC_TRUE;
+      *stop                                    = PETSC_TRUE;
       if (ph.write_checkpoint) { // (continued with -phases ...,mechanics, it goes on from the ignition)
         char name[64];
         std::snprintf(name, sizeof(name), "phase_ignition_%06d.h5", (int)sim.step);
@@ -435,10 +453,10 @@ PetscErrorCode PhasesAfterStep(Simulation &sim, PetscBool *stop)
 
 PetscErrorCode PhasesTemperatures(Simulation &sim, std::vector<PetscReal> &out)
 {
-  const size_t     nm = sim.mpm.materials.size();
-  PetscInt         n;
-  const PetscReal *T, *mass;
-  const PetscInt  *mat;
+  const size_t           nm = sim.mpm.materials.size();
+  PetscInt               n;
+  const PetscReal       *T, *mass;
+  const PetscInt        *mat;
   std::vector<PetscReal> hottest(nm, 0), sums(2 * nm, 0), global_sums(2 * nm, 0);
   PetscFunctionBeginUser;
   out.assign(2 * nm, 0);
@@ -467,8 +485,11 @@ std::string PhasesSummary(const Simulation &sim)
   const Phases &ph = sim.phases;
   if (!ph.Enabled()) return "";
   char buf[1024];
-  std::snprintf(buf, sizeof(buf), "  \"phases\": {\"current\": \"%s\", \"heatup_start\": %.12g, \"heat_only_start\": %.12g, \"mechanics_start\": %.12g, \"flux_window\": [%.12g, %.12g], \"flame_temperature\": %.12g, \"surface_heat_rate\": %.12g, \"ignition_material\": \"%s\", \"ignition_temperature\": %.12g, \"hottest_ignition_material\": %.12g},\n",
-                RunPhaseName(ph.Current()), (double)ph.switch_time[0], (double)ph.switch_time[1], (double)ph.switch_time[2], (double)ph.window_start, (double)(ph.window_start + ph.window_length), (double)ph.flame_temperature, (double)ph.surface_heat_rate, ph.ignition_material >= 0 ? sim.mpm.materials[ph.ignition_material]->Name() : "", (double)ph.ignition_temperature, (double)ph.hottest_ignition);
+  std::snprintf(buf, sizeof(buf),
+                "  \"phases\": {\"current\": \"%s\", \"heatup_start\": %.12g, \"heat_only_start\": %.12g, \"mechanics_start\": %.12g, \"flux_window\": [%.12g, %.12g], \"flame_temperature\": %.12g, \"surface_heat_rate\": %.12g, "
+                "\"ignition_material\": \"%s\", \"ignition_temperature\": %.12g, \"hottest_ignition_material\": %.12g},\n",
+                RunPhaseName(ph.Current()), (double)ph.switch_time[0], (double)ph.switch_time[1], (double)ph.switch_time[2], (double)ph.window_start, (double)(ph.window_start + ph.window_length), (double)ph.flame_temperature,
+                (double)ph.surface_heat_rate, ph.ignition_material >= 0 ? sim.mpm.materials[ph.ignition_material]->Name() : "", (double)ph.ignition_temperature, (double)ph.hottest_ignition);
   return buf;
 }
 

@@ -45,40 +45,40 @@ inline const char *RunPhaseName(RunPhase p) { return p == RunPhase::HeatUp ? "he
 
 struct Phases {
   // Options
-  std::vector<RunPhase> order = {RunPhase::Mechanics}; // -phases, in the order heatup, heat_only, mechanics
-  PetscReal heatup_end_time          = 0.05;  // s
-  PetscReal flux_window              = 0;     // s; 0: the last fifth of the heat-up
-  PetscReal heat_only_dt             = 0.05;  // s
-  PetscReal heatup_sound_speed_knob  = 0;     // k of the gas CFL during the heat-up
-  PetscReal heatup_dt_max            = 1e-4;  // s
-  PetscReal flame_temperature        = 0;     // K; 0: the hottest gas at the window's end
-  PetscReal ignition_temperature     = 0;     // K; 0: the burn model's
-  PetscInt  ignition_material        = -1;    // material id
-  PetscBool ignition_by_temperature  = PETSC_FALSE; // -phase_ignition temperature: a particle's temperature, not the burn model's cells
-  PetscBool ignition_by_kinetics     = PETSC_FALSE; // -phase_ignition kinetics: each charge particle's thermal decomposition
-  PetscReal kinetics_fraction        = 0.01;  // the reacted fraction that counts as runaway
-  std::unique_ptr<ThermalDecomposition, ThermalDecompositionDeleter> kinetics; // -<material>_decomposition_*
-  PetscBool write_checkpoint         = PETSC_TRUE;
-  PetscReal mechanics_duration       = 0;     // s; > 0: the run ends this long after mechanics began
-  PetscBool mechanics_explicit       = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)
+  std::vector<RunPhase>                                              order                   = {RunPhase::Mechanics}; // -phases, in the order heatup, heat_only, mechanics
+  PetscReal                                                          heatup_end_time         = 0.05;                  // s
+  PetscReal                                                          flux_window             = 0;                     // s; 0: the last fifth of the heat-up
+  PetscReal                                                          heat_only_dt            = 0.05;                  // s
+  PetscReal                                                          heatup_sound_speed_knob = 0;                     // k of the gas CFL during the heat-up
+  PetscReal                                                          heatup_dt_max           = 1e-4;                  // s
+  PetscReal                                                          flame_temperature       = 0;                     // K; 0: the hottest gas at the window's end
+  PetscReal                                                          ignition_temperature    = 0;                     // K; 0: the burn model's
+  PetscInt                                                           ignition_material       = -1;                    // material id
+  PetscBool                                                          ignition_by_temperature = PETSC_FALSE;           // -phase_ignition temperature: a particle's temperature, not the burn model's cells
+  PetscBool                                                          ignition_by_kinetics    = PETSC_FALSE;           // -phase_ignition kinetics: each charge particle's thermal decomposition
+  PetscReal                                                          kinetics_fraction       = 0.01;                  // the reacted fraction that counts as runaway
+  std::unique_ptr<ThermalDecomposition, ThermalDecompositionDeleter> kinetics;                                        // -<material>_decomposition_*
+  PetscBool                                                          write_checkpoint   = PETSC_TRUE;
+  PetscReal                                                          mechanics_duration = 0;          // s; > 0: the run ends this long after mechanics began
+  PetscBool                                                          mechanics_explicit = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)
 
   // State (checkpointed: /run/phases)
-  size_t    current          = 0;  // index into order
-  PetscReal window_start     = -1; // s; < 0: not measuring yet
-  PetscReal window_length    = 0;  // s measured so far
-  PetscReal switch_time[3]   = {-1, -1, -1}; // s: when heatup, heat_only, mechanics began (-1: not yet)
-  PetscReal surface_heat_rate = 0; // W (per metre of depth in 2-D): sum_p G_p (T_f - T_p) at the window's end
-  PetscReal hottest_ignition = 0;  // K: the criterion's temperature at the last check (particle or cell)
-  bool      switched = false;      // this step ended a phase (the driver writes an output then)
+  size_t    current           = 0;            // index into order
+  PetscReal window_start      = -1;           // s; < 0: not measuring yet
+  PetscReal window_length     = 0;            // s measured so far
+  PetscReal switch_time[3]    = {-1, -1, -1}; // s: when heatup, heat_only, mechanics began (-1: not yet)
+  PetscReal surface_heat_rate = 0;            // W (per metre of depth in 2-D): sum_p G_p (T_f - T_p) at the window's end
+  PetscReal hottest_ignition  = 0;            // K: the criterion's temperature at the last check (particle or cell)
+  bool      switched          = false;        // this step ended a phase (the driver writes an output then)
   // heat_only with the burn model's criterion: the lowest ignition temperature of the burning
   // solids (0: one has none, every step is checked), and whether this heat_only has checked once
   PetscReal cell_ignition_temperature = 0;
   bool      heat_only_checked         = false;
 
-  PetscReal mechanics_sound_speed_knob = 0; // the gas's own k, restored for mechanics
-  PetscBool semi_implicit_gas = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one
-  std::vector<PetscReal> temperature_before; // per local particle, reused: the heat-up's measurement
-  PetscLogEvent ev_measure = 0, ev_heat_only = 0;
+  PetscReal              mechanics_sound_speed_knob = 0;           // the gas's own k, restored for mechanics
+  PetscBool              semi_implicit_gas          = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one
+  std::vector<PetscReal> temperature_before;                       // per local particle, reused: the heat-up's measurement
+  PetscLogEvent          ev_measure = 0, ev_heat_only = 0;
 
   bool     Enabled() const { return !(order.size() == 1 && order[0] == RunPhase::Mechanics); }
   RunPhase Current() const { return order[current]; }

@@ -36,16 +36,16 @@ const char *const PathNames[] = {"uniaxial_strain", "uniaxial_stress", "simple_s
 enum Path { UniaxialStrain, UniaxialStress, SimpleShear, Rotation, Hydrostatic, VelocityGradient, RotatingUniaxialStrain };
 
 struct PointOptions {
-  int         path          = UniaxialStrain;
-  PetscReal   rate          = 1e3;  // 1/s
-  PetscReal   temperature   = 298;  // K
-  PetscReal   final_strain  = 0.2;
-  PetscInt    steps         = 1000;
-  PetscBool   adiabatic     = PETSC_TRUE;
-  PetscReal   L_hat[9]      = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  int         path           = UniaxialStrain;
+  PetscReal   rate           = 1e3; // 1/s
+  PetscReal   temperature    = 298; // K
+  PetscReal   final_strain   = 0.2;
+  PetscInt    steps          = 1000;
+  PetscBool   adiabatic      = PETSC_TRUE;
+  PetscReal   L_hat[9]       = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   PetscReal   rotation_angle = 2 * PETSC_PI; // rad, rotating_uniaxial_strain
   PetscReal   reverse_strain = 0;            // the path turns back at this strain (0: never)
-  std::string output        = "point.csv";
+  std::string output         = "point.csv";
   std::string material;
 };
 
@@ -86,9 +86,15 @@ Mat3 PathVelocityGradient(const PointOptions &o, PetscReal a)
   Mat3 L = Mat3::Zero();
   switch (o.path) {
   case UniaxialStrain: L(0, 0) = o.rate; break;
-  case UniaxialStress: L(0, 0) = o.rate; L(1, 1) = L(2, 2) = a; break;
+  case UniaxialStress:
+    L(0, 0) = o.rate;
+    L(1, 1) = L(2, 2) = a;
+    break;
   case SimpleShear: L(0, 1) = o.rate; break;
-  case Rotation: L(0, 1) = -o.rate; L(1, 0) = o.rate; break;
+  case Rotation:
+    L(0, 1) = -o.rate;
+    L(1, 0) = o.rate;
+    break;
   case Hydrostatic: L = o.rate * Mat3::Identity(); break;
   case VelocityGradient: L = o.rate * Mat3CMap(o.L_hat); break;
   case RotatingUniaxialStrain: break; // set from F(t), see RotatingF
@@ -164,8 +170,8 @@ PetscErrorCode RunPointDriver(Simulation &sim)
       m[p]         = material.Density() * V[p];
       T[p]         = o.temperature;
       c[p] = e[p] = 0;
-      mat[p]       = id;
-      pid[p]       = 0; // the same random draws for both copies
+      mat[p]      = id;
+      pid[p]      = 0; // the same random draws for both copies
     }
     PetscCall(f.RestoreAll());
   }
@@ -180,11 +186,12 @@ PetscErrorCode RunPointDriver(Simulation &sim)
   PetscCall(OptionsCheckEnd(sim.comm, RunFeatures(sim, true))); // every option read by now: none may be misspelled
 
   const PetscReal total_time = o.final_strain / o.rate, dt = total_time / o.steps;
-  FILE           *out        = nullptr;
+  FILE           *out = nullptr;
   if (!sim.rank) {
     out = std::fopen(o.output.c_str(), "w");
     PetscCheck(out, PETSC_COMM_SELF, PETSC_ERR_FILE_OPEN, "Could not open -point_output %s", o.output.c_str());
-    std::fprintf(out, "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy,density,wave_speed");
+    std::fprintf(out,
+                 "step,time,strain,stress_xx,stress_yy,stress_zz,stress_xy,stress_yz,stress_xz,pressure,von_mises,plastic_strain,plastic_strain_rate,temperature,porosity,damage,flow_stress,unstable,failed,F_xx,F_xy,F_yx,F_yy,density,wave_speed");
   }
   // model fields written when the material has them (it declares them in OutputFields)
   const char *optional[] = {state_field::plastic_strain, state_field::plastic_strain_rate, "porosity", "damage", "flow_stress", "unstable", state_field::failed};
@@ -202,9 +209,12 @@ PetscErrorCode RunPointDriver(Simulation &sim)
     for (const char *name : extra) std::fprintf(out, ",%s", name);
     std::fprintf(out, "\n");
   }
-  PetscReal   lateral_rate    = 0;
+  PetscReal lateral_rate = 0;
   // the path's strain at the end of a step (back down after -point_reverse_strain)
-  auto path_strain = [&](PetscInt step) { const PetscReal s = o.rate * step * dt; return o.reverse_strain > 0 && s > o.reverse_strain ? 2 * o.reverse_strain - s : s; };
+  auto path_strain = [&](PetscInt step) {
+    const PetscReal s = o.rate * step * dt;
+    return o.reverse_strain > 0 && s > o.reverse_strain ? 2 * o.reverse_strain - s : s;
+  };
   for (PetscInt step = 0; step <= o.steps; ++step) {
     if (step > 0) {
       const PetscReal direction = path_strain(step) < path_strain(step - 1) ? -1 : 1; // the step turning back takes its mean direction
@@ -215,7 +225,7 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         PetscCall(DMSwarmCopyPoint(sw, 0, 1)); // copies point 0 into point 1
         SwarmAccess f(sw);
         PetscInt   *mat;
-        PetscReal          *F, *Lp, *V, *V0, *T, *sigma;
+        PetscReal  *F, *Lp, *V, *V0, *T, *sigma;
         PetscCall(f.Get(field::material, &mat));
         PetscCall(f.Get(field::F, &F));
         PetscCall(f.Get(field::L, &Lp));
@@ -226,12 +236,12 @@ PetscErrorCode RunPointDriver(Simulation &sim)
         Mat3 L = direction * PathVelocityGradient(o, direction * a);
         if (o.path == RotatingUniaxialStrain) {
           const Mat3 F0 = RotatingF(o, (step - 1) * dt, total_time), F1 = RotatingF(o, step * dt, total_time);
-          L               = (F1 - F0) * (0.5 * (F0 + F1)).inverse() / dt;
-          Mat3Map(F + 9)  = F1;
+          L              = (F1 - F0) * (0.5 * (F0 + F1)).inverse() / dt;
+          Mat3Map(F + 9) = F1;
         } else Mat3Map(F + 9) = (sim.mpm.f_update == FUpdate::Exponential ? Expm(L * dt) : Mat3(Mat3::Identity() + L * dt)) * Mat3Map(F + 9);
         Mat3Map(Lp + 9) = L;
-        V[1]             = V0[1] * Mat3Map(F + 9).determinant();
-        mat[0]           = -1; // only the trial point takes the step
+        V[1]            = V0[1] * Mat3Map(F + 9).determinant();
+        mat[0]          = -1; // only the trial point takes the step
         PetscCall(f.RestoreAll());
         {
           SwarmAccess         views(sw);
@@ -298,12 +308,14 @@ PetscErrorCode RunPointDriver(Simulation &sim)
       Q(1, 0)           = std::sin(theta);
       s0                = Q.transpose() * s0 * Q;
     }
-    const PetscReal p  = -s0.trace() / 3;
+    const PetscReal p   = -s0.trace() / 3;
     Mat3            dev = s0;
     dev.diagonal().array() += p;
     const PetscReal q = std::sqrt(1.5 * dev.squaredNorm());
     if (out)
-      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)path_strain(step), (double)s0(0, 0), (double)s0(1, 1), (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5], (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
+      std::fprintf(out, "%d,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%.10e,%d,%d,%.10e,%.10e,%.10e,%.10e", (int)step, (double)(step * dt), (double)path_strain(step), (double)s0(0, 0), (double)s0(1, 1),
+                   (double)s0(2, 2), (double)s0(0, 1), (double)s0(1, 2), (double)s0(0, 2), (double)p, (double)q, (double)values[0], (double)values[1], (double)T[0], (double)values[2], (double)values[3], (double)values[4], (int)values[5],
+                   (int)values[6], (double)F[0], (double)F[1], (double)F[3], (double)F[4]);
     {
       const PetscReal *mass, *volume, *wave_speed;
       PetscCall(f.Get(field::mass, &mass));
@@ -317,7 +329,9 @@ PetscErrorCode RunPointDriver(Simulation &sim)
       if (out) std::fprintf(out, ",%.10e", (double)v[0]);
     }
     if (out) std::fprintf(out, "\n");
-    if (step == o.steps) PetscCall(PetscPrintf(sim.comm, "Point driver: %s %s to strain %g at %g 1/s: stress xx %.6e Pa, von Mises %.6e Pa, plastic strain %.6g, temperature %.6g K; wrote %s\n", material.Name(), PathNames[o.path], (double)o.final_strain, (double)o.rate, (double)s0(0, 0), (double)q, (double)values[0], (double)T[0], o.output.c_str()));
+    if (step == o.steps)
+      PetscCall(PetscPrintf(sim.comm, "Point driver: %s %s to strain %g at %g 1/s: stress xx %.6e Pa, von Mises %.6e Pa, plastic strain %.6g, temperature %.6g K; wrote %s\n", material.Name(), PathNames[o.path], (double)o.final_strain, (double)o.rate,
+                            (double)s0(0, 0), (double)q, (double)values[0], (double)T[0], o.output.c_str()));
     PetscCall(f.RestoreAll());
   }
   if (out) std::fclose(out);

@@ -37,22 +37,23 @@ struct Simulation {
   PetscMPIInt rank = 0, size = 1;
   PetscBool   help = PETSC_FALSE; // -help: read and list every option, then stop
 
-  RunControl  run; // the scene's name, final time, step cap and stops
-  Phases      phases; // heat-up, heat only, mechanics (src/phases.cxx); mechanics alone unless -phases
-  Output      output; // options, file series and monitor (src/io/)
+  RunControl run;    // the scene's name, final time, step cap and stops
+  Phases     phases; // heat-up, heat only, mechanics (src/phases.cxx); mechanics alone unless -phases
+  Output     output; // options, file series and monitor (src/io/)
 
   // The solvers and the scenes' parts
-  MpmSolver                                          mpm;      // the particles and the grid's nodes (its swarm null without solids)
-  std::unique_ptr<IceSolver, IceSolverDeleter>       ice;      // null without gas materials
-  std::unique_ptr<Coupling, CouplingDeleter>         coupling; // null unless solids and gases
-  std::unique_ptr<AnalyticSolution>                  analytic; // null unless -analytic
-  std::unique_ptr<TaylorScene, TaylorSceneDeleter>   taylor;   // null unless -taylor
+  MpmSolver                                        mpm;      // the particles and the grid's nodes (its swarm null without solids)
+  std::unique_ptr<IceSolver, IceSolverDeleter>     ice;      // null without gas materials
+  std::unique_ptr<Coupling, CouplingDeleter>       coupling; // null unless solids and gases
+  std::unique_ptr<AnalyticSolution>                analytic; // null unless -analytic
+  std::unique_ptr<TaylorScene, TaylorSceneDeleter> taylor;   // null unless -taylor
+
   bool HasParticles() const { return mpm.HasParticles(); }
 
   // The clock (the solvers' copies are set from it at every step)
-  PetscInt  step = 0;
-  PetscReal time = 0, dt = 0;
-  PetscBool restarted = PETSC_FALSE; // state loaded from a checkpoint (-restart; src/io/checkpoint.cxx)
+  PetscInt       step = 0;
+  PetscReal      time = 0, dt = 0;
+  PetscBool      restarted  = PETSC_FALSE; // state loaded from a checkpoint (-restart; src/io/checkpoint.cxx)
   PetscLogDouble wall_start = 0, wall_stepping = 0;
 
   // Stages for -log_view
@@ -82,10 +83,10 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force);
 PetscErrorCode WriteSummary(Simulation &sim);
 struct EnergyReport {
   PetscReal kinetic, internal, external_work, removed, total, balance_error;
-  PetscReal failure_energy; // elastic energy released by failure responses (part of internal)
+  PetscReal failure_energy;                   // elastic energy released by failure responses (part of internal)
   PetscReal plastic_work, heat, viscous_work; // parts of internal, J
-  PetscReal stored_elastic; // stored elastic energy (models that report it; else the whole internal energy), J
-  PetscReal unaccounted;    // internal - stored elastic - plastic work - viscous work - failure energy, J
+  PetscReal stored_elastic;                   // stored elastic energy (models that report it; else the whole internal energy), J
+  PetscReal unaccounted;                      // internal - stored elastic - plastic work - viscous work - failure energy, J
   PetscReal momentum[3];
   PetscReal mass;
 };

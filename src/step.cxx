@@ -74,7 +74,7 @@ static PetscErrorCode MPMStep(MpmSolver &mpm)
     break;
   }
   PetscCall(MigrateParticles(mpm));
-  PetscCall(ConductHeat(mpm)); // after migration: the stencil needs every particle on its owner rank
+  PetscCall(ConductHeat(mpm));     // after migration: the stencil needs every particle on its owner rank
   PetscCall(NonlocalAverage(mpm)); // likewise; no-op unless a material regularises nonlocally
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -101,9 +101,9 @@ static PetscErrorCode ICEStep(IceSolver &ice, PetscReal dt)
 // Solids and gas in one step (ice.md 1.2).
 static PetscErrorCode CoupledStep(Simulation &sim)
 {
-  MpmSolver &mpm = sim.mpm;
+  MpmSolver &mpm      = sim.mpm;
   Coupling  &coupling = *sim.coupling;
-  IceSolver &ice = *sim.ice;
+  IceSolver &ice      = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
   PetscCall(ComputeExternalForces(mpm));
@@ -147,9 +147,9 @@ static PetscErrorCode CoupledStep(Simulation &sim)
 // The heat-up: the gas flows around solids held still; they take its heat and conduct it.
 static PetscErrorCode HeatUpStep(Simulation &sim)
 {
-  MpmSolver &mpm = sim.mpm;
+  MpmSolver &mpm      = sim.mpm;
   Coupling  &coupling = *sim.coupling;
-  IceSolver &ice = *sim.ice;
+  IceSolver &ice      = *sim.ice;
   PetscFunctionBeginUser;
   ice.dt = sim.dt;
   PetscCall(ParticlesToGrid(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_FALSE}));
@@ -210,7 +210,10 @@ static PetscErrorCode StableTimeStep(Simulation &sim)
       sim.dt               = PetscMin(sim.dt, ph.heatup_dt_max);
       if (left > 0 && (sim.dt > left || left - sim.dt < 1e-6 * sim.dt)) sim.dt = left;
     } else if (phase == RunPhase::HeatOnly) sim.dt = sim.phases.heat_only_dt;
-    PetscCheck(sim.dt > 0 && sim.dt < PETSC_MAX_REAL, sim.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive: a sound speed or velocity is not finite; check the gas materials' equation-of-state options (-<gas>_gamma, -<gas>_cv, ...), their -<gas>_density and -<gas>_temperature, and -ice_cfl / -ice_dt", sim.step, (double)sim.dt);
+    PetscCheck(sim.dt > 0 && sim.dt < PETSC_MAX_REAL, sim.comm, PETSC_ERR_NOT_CONVERGED,
+               "Step %" PetscInt_FMT
+               ": time step %g s is not positive: a sound speed or velocity is not finite; check the gas materials' equation-of-state options (-<gas>_gamma, -<gas>_cv, ...), their -<gas>_density and -<gas>_temperature, and -ice_cfl / -ice_dt",
+               sim.step, (double)sim.dt);
     const PetscReal remaining = sim.run.final_time - sim.time;
     if (sim.dt > remaining || remaining - sim.dt < 1e-6 * sim.dt) sim.dt = remaining;
   }

@@ -23,19 +23,19 @@ namespace burst {
 
 // What a burn model may read about one cell (the caller fills what the models need).
 struct BurnInput {
-  PetscReal p       = 0;   // equilibration pressure, Pa (Steady Burn: the product-side pressure of the 3x3x3 search, ice.md 3.3)
-  PetscReal T_s     = 300; // reactant (solid) temperature, K (Steady Burn: T0 of the 3x3x3 search)
-  PetscReal T_g     = 300; // product gas temperature, K (read by no current model; kept for Unsteady Burn and diagnostics)
-  PetscReal rho_s   = 0;   // reactant material density rho_s = 1/v_s, kg/m^3
-  PetscReal area    = 0;   // burning surface area in the cell, m^2 (BurnSurfaceArea)
-  PetscReal dt      = 0;   // time step, s
-  PetscReal M_s     = 0;   // reactant mass in the cell, kg
-  PetscReal M_tiny  = 0;   // reactant mass that must stay in the cell (V rho_tiny), kg
+  PetscReal p      = 0;   // equilibration pressure, Pa (Steady Burn: the product-side pressure of the 3x3x3 search, ice.md 3.3)
+  PetscReal T_s    = 300; // reactant (solid) temperature, K (Steady Burn: T0 of the 3x3x3 search)
+  PetscReal T_g    = 300; // product gas temperature, K (read by no current model; kept for Unsteady Burn and diagnostics)
+  PetscReal rho_s  = 0;   // reactant material density rho_s = 1/v_s, kg/m^3
+  PetscReal area   = 0;   // burning surface area in the cell, m^2 (BurnSurfaceArea)
+  PetscReal dt     = 0;   // time step, s
+  PetscReal M_s    = 0;   // reactant mass in the cell, kg
+  PetscReal M_tiny = 0;   // reactant mass that must stay in the cell (V rho_tiny), kg
   // Ignition criteria (ice.md 3.2, 3.3):
-  PetscReal mass_contrast = 0;   // (M_max - M_min)/M_max of the nodal reactant mass over the cell's nodes, in [0, 1]
-  PetscReal T_hot         = 0;   // K: Simple Burn: the hottest material in the cell with volume fraction > 0.2;
-                                 //    Steady Burn: the same over the 3x3x3 neighbours holding <= BoundaryParticles particles
-  PetscInt  n_particles   = 1;   // reactant particles in the cell (Steady Burn needs >= 1)
+  PetscReal mass_contrast = 0; // (M_max - M_min)/M_max of the nodal reactant mass over the cell's nodes, in [0, 1]
+  PetscReal T_hot         = 0; // K: Simple Burn: the hottest material in the cell with volume fraction > 0.2;
+                               //    Steady Burn: the same over the 3x3x3 neighbours holding <= BoundaryParticles particles
+  PetscInt n_particles = 1;    // reactant particles in the cell (Steady Burn needs >= 1)
 };
 
 // What it returns; all zero when the cell does not burn.

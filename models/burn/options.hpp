@@ -6,6 +6,9 @@
 namespace burst {
 
 // -<material>_<opt> as a real with its range checked (pointwise_registry.hpp).
-inline PetscErrorCode BurnOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower, PetscBool open_upper = PETSC_FALSE) { return PointwiseOptionsReal(PetscOptionsObject, opt, help, value, lo, hi, open_lower, open_upper); }
+inline PetscErrorCode BurnOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower, PetscBool open_upper = PETSC_FALSE)
+{
+  return PointwiseOptionsReal(PetscOptionsObject, opt, help, value, lo, hi, open_lower, open_upper);
+}
 
 } // namespace burst

@@ -49,11 +49,11 @@ PetscErrorCode BurnModel::Evaluate(const BurnInput &in, BurnOutput *out) const
   PetscReal mdot = 0, T_surf = 0;
   PetscCall(MassFlux(in, &mdot, &T_surf));
   const PetscReal available = std::max(in.M_s - in.M_tiny, (PetscReal)0);
-  out->burning = PETSC_TRUE;
-  out->mdot    = mdot;
-  out->T_surf  = T_surf;
-  out->Q       = HeatOfReaction();
-  out->dm      = std::min(std::max(mdot * in.area * in.dt, (PetscReal)0), available);
+  out->burning              = PETSC_TRUE;
+  out->mdot                 = mdot;
+  out->T_surf               = T_surf;
+  out->Q                    = HeatOfReaction();
+  out->dm                   = std::min(std::max(mdot * in.area * in.dt, (PetscReal)0), available);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -66,7 +66,7 @@ PetscReal BurnSurfaceArea(PetscInt dim, const PetscReal h[3], const PetscReal g[
   PetscReal       nmax = 0, sum = 0;
   for (PetscInt i = 0; i < dim; ++i) {
     const PetscReal n = std::fabs(g[i]) / norm;
-    nmax = std::max(nmax, n);
+    nmax              = std::max(nmax, n);
     sum += h[i] * n;
   }
   return volume * std::cbrt(nmax) / sum;

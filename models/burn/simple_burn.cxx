@@ -17,18 +17,15 @@ namespace burst {
 
 class SimpleBurn final : public BurnModel {
 public:
-  PetscReal A_b      = 75.3;     // kg/(m^2 s), rate at p = p_ref
-  PetscReal p_ref    = 101325;   // Pa
-  PetscReal n        = 0.778;    // pressure exponent (-)
-  PetscReal Q        = 2.0e6;    // J/kg
-  PetscReal T_th     = 450;      // K
-  PetscReal p_th     = 5e4;      // Pa
-  PetscReal contrast = 0.4;      // lower bound of (M_max - M_min)/M_max (-)
+  PetscReal A_b      = 75.3;   // kg/(m^2 s), rate at p = p_ref
+  PetscReal p_ref    = 101325; // Pa
+  PetscReal n        = 0.778;  // pressure exponent (-)
+  PetscReal Q        = 2.0e6;  // J/kg
+  PetscReal T_th     = 450;    // K
+  PetscReal p_th     = 5e4;    // Pa
+  PetscReal contrast = 0.4;    // lower bound of (M_max - M_min)/M_max (-)
 
-  bool Ignites(const BurnInput &in) const override
-  {
-    return in.mass_contrast > contrast && in.mass_contrast < 1 && in.T_hot > T_th && in.p > p_th;
-  }
+  bool           Ignites(const BurnInput &in) const override { return in.mass_contrast > contrast && in.mass_contrast < 1 && in.T_hot > T_th && in.p > p_th; }
   PetscErrorCode MassFlux(const BurnInput &in, PetscReal *mdot, PetscReal *T_surf) const override
   {
     *mdot   = in.p > 0 ? A_b * std::pow(in.p / p_ref, n) : 0;
@@ -52,7 +49,8 @@ public:
   }
   PetscErrorCode View(PetscViewer viewer) const override
   {
-    return PetscViewerASCIIPrintf(viewer, "  burn model: simple_burn mdot'' = %g kg/(m^2 s) (p/%g Pa)^%g, Q %g J/kg; ignites if T > %g K, p > %g Pa, %g < (M_max-M_min)/M_max < 1\n", (double)A_b, (double)p_ref, (double)n, (double)Q, (double)T_th, (double)p_th, (double)contrast);
+    return PetscViewerASCIIPrintf(viewer, "  burn model: simple_burn mdot'' = %g kg/(m^2 s) (p/%g Pa)^%g, Q %g J/kg; ignites if T > %g K, p > %g Pa, %g < (M_max-M_min)/M_max < 1\n", (double)A_b, (double)p_ref, (double)n, (double)Q, (double)T_th,
+                                  (double)p_th, (double)contrast);
   }
 };
 

@@ -41,33 +41,30 @@ namespace burst {
 class SteadyBurn final : public BurnModel {
 public:
   // PBX 9501/HMX values of ice.md 3.3 (Uintah SteadyBurn_2dRT, DDT, TBurner_2dRT inputs)
-  PetscReal R       = 8.314;    // J/(mol K)
-  PetscReal A_c     = 1.637e15; // 1/s, condensed-phase pre-exponential factor
-  PetscReal E_c     = 1.76e5;   // J/mol, condensed-phase activation energy
-  PetscReal B_g     = 1.6e-3;   // m^3/(kg s K^2), gas-phase pre-exponential factor
-  PetscReal Q_c     = 4.0e5;    // J/kg, condensed-phase heat release
-  PetscReal Q_g     = 3.018e6;  // J/kg, gas-phase heat release
-  PetscReal kappa_g = 0.07;     // W/(m K), gas conductivity
-  PetscReal kappa_c = 0.2;      // W/(m K), condensed-phase conductivity (Uintah's inputs; the guide's table says 0.02)
-  PetscReal C_p     = 1400;     // J/(kg K)
-  PetscReal W       = 0.0342;   // kg/mol, product molecular weight
-  PetscReal p_th    = 5e4;      // Pa
-  PetscReal T_ign   = 550;      // K
-  PetscInt  boundary_particles = 3; // BP: the caller's neighbourhood search counts neighbours with <= BP particles
-  PetscReal T0_min  = 200;      // K
-  PetscReal T0_max  = 550;      // K
+  PetscReal R                  = 8.314;    // J/(mol K)
+  PetscReal A_c                = 1.637e15; // 1/s, condensed-phase pre-exponential factor
+  PetscReal E_c                = 1.76e5;   // J/mol, condensed-phase activation energy
+  PetscReal B_g                = 1.6e-3;   // m^3/(kg s K^2), gas-phase pre-exponential factor
+  PetscReal Q_c                = 4.0e5;    // J/kg, condensed-phase heat release
+  PetscReal Q_g                = 3.018e6;  // J/kg, gas-phase heat release
+  PetscReal kappa_g            = 0.07;     // W/(m K), gas conductivity
+  PetscReal kappa_c            = 0.2;      // W/(m K), condensed-phase conductivity (Uintah's inputs; the guide's table says 0.02)
+  PetscReal C_p                = 1400;     // J/(kg K)
+  PetscReal W                  = 0.0342;   // kg/mol, product molecular weight
+  PetscReal p_th               = 5e4;      // Pa
+  PetscReal T_ign              = 550;      // K
+  PetscInt  boundary_particles = 3;        // BP: the caller's neighbourhood search counts neighbours with <= BP particles
+  PetscReal T0_min             = 200;      // K
+  PetscReal T0_max             = 550;      // K
 
-  bool Ignites(const BurnInput &in) const override
-  {
-    return in.mass_contrast > 0.3 && in.n_particles >= 1 && in.T_hot > T_ign && in.p >= p_th;
-  }
+  bool Ignites(const BurnInput &in) const override { return in.mass_contrast > 0.3 && in.n_particles >= 1 && in.T_hot > T_ign && in.p >= p_th; }
 
   // mdot(T) and dln(mdot^2)/dT for bulk temperature T0 and reactant density rho.
   void Rate(PetscReal T, PetscReal T0, PetscReal rho, PetscReal *mdot, PetscReal *dlnm2) const
   {
     const PetscReal d = T - T0 - Q_c / (2 * C_p); // > Q_c/(2 C_p) on the bracket
-    *mdot  = std::sqrt(kappa_c * rho * A_c * R * T * T * std::exp(-E_c / (R * T)) / (C_p * E_c * d));
-    *dlnm2 = 2 / T + E_c / (R * T * T) - 1 / d;
+    *mdot             = std::sqrt(kappa_c * rho * A_c * R * T * T * std::exp(-E_c / (R * T)) / (C_p * E_c * d));
+    *dlnm2            = 2 / T + E_c / (R * T * T) - 1 / d;
   }
 
   // Surface temperature and burn rate at bulk temperature T0 (already clamped), pressure P, density rho.
@@ -76,12 +73,12 @@ public:
     PetscFunctionBeginUser;
     const PetscReal K  = 4 * kappa_g * B_g * W * W * P * P / (C_p * R * R); // Da = K/mdot^2
     PetscReal       lo = T0 + Q_c / C_p, hi = T0 + (Q_c + Q_g) / C_p;
-    PetscReal       T  = 850, m = 0, dlnm2 = 0, g_prev = PETSC_MAX_REAL;
+    PetscReal       T = 850, m = 0, dlnm2 = 0, g_prev = PETSC_MAX_REAL;
     if (!(T > lo && T < hi)) T = 0.5 * (lo + hi);
     for (int it = 0; it < 200; ++it) {
       Rate(T, T0, rho, &m, &dlnm2);
       const PetscReal Da = K / (m * m), s = std::sqrt(1 + Da);
-      const PetscReal g  = T - (T0 + Q_c / C_p + (Q_g / C_p) * Da / ((s + 1) * (s + 1)));
+      const PetscReal g = T - (T0 + Q_c / C_p + (Q_g / C_p) * Da / ((s + 1) * (s + 1)));
       if (std::fabs(g) < 1e-6) {
         *Ts_out   = T;
         *mdot_out = m;
@@ -96,8 +93,8 @@ public:
       if (!(Tn > lo && Tn < hi) || std::fabs(g) > 0.5 * g_prev) Tn = 0.5 * (lo + hi);
       g_prev = std::fabs(g);
       if (Tn == T || hi - lo <= 1e-13 * T) { // the root is bracketed to double precision: where
-        *Ts_out   = T;                      // g is steep (high pressure) |g| < 1e-6 K may be out
-        *mdot_out = m;                      // of reach of one ulp of T
+        *Ts_out   = T;                       // g is steep (high pressure) |g| < 1e-6 K may be out
+        *mdot_out = m;                       // of reach of one ulp of T
         PetscFunctionReturn(PETSC_SUCCESS);
       }
       T = Tn;
@@ -141,7 +138,8 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override
   {
     PetscFunctionBeginUser;
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  burn model: steady_burn (WSB) A_c %g 1/s, E_c %g J/mol, B_g %g m^3/(kg s K^2), Q_c %g J/kg, Q_g %g J/kg, kappa_g %g W/(m K), kappa_c %g W/(m K), C_p %g J/(kg K), W %g kg/mol, R %g J/(mol K)\n", (double)A_c, (double)E_c, (double)B_g, (double)Q_c, (double)Q_g, (double)kappa_g, (double)kappa_c, (double)C_p, (double)W, (double)R));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  burn model: steady_burn (WSB) A_c %g 1/s, E_c %g J/mol, B_g %g m^3/(kg s K^2), Q_c %g J/kg, Q_g %g J/kg, kappa_g %g W/(m K), kappa_c %g W/(m K), C_p %g J/(kg K), W %g kg/mol, R %g J/(mol K)\n",
+                                     (double)A_c, (double)E_c, (double)B_g, (double)Q_c, (double)Q_g, (double)kappa_g, (double)kappa_c, (double)C_p, (double)W, (double)R));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    ignites if T > %g K within %" PetscInt_FMT "-particle neighbours and p >= %g Pa; T0 clamped to [%g, %g] K\n", (double)T_ign, boundary_particles, (double)p_th, (double)T0_min, (double)T0_max));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

@@ -39,8 +39,8 @@ namespace {
 
 int Rhs(realtype, N_Vector y, N_Vector ydot, void *user)
 {
-  const ThermalDecomposition &m = *static_cast<ThermalDecomposition::Impl *>(user)->model;
-  const realtype lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
+  const ThermalDecomposition &m      = *static_cast<ThermalDecomposition::Impl *>(user)->model;
+  const realtype              lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
   if (!(T > 0)) return 1; // recoverable: CVODE retries with a smaller step
   PetscReal dl, dT;
   m.Rates(lambda, T, &dl, &dT);
@@ -53,8 +53,8 @@ int Rhs(realtype, N_Vector y, N_Vector ydot, void *user)
 //   dr/dlambda = -Z e^{-T_a/T}, dr/dT = r T_a/T^2; dT/dt = (Q r + h (T_env - T))/c.
 int Jac(realtype, N_Vector y, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vector, N_Vector)
 {
-  const ThermalDecompositionParameters &p = static_cast<ThermalDecomposition::Impl *>(user)->model->par;
-  const realtype lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
+  const ThermalDecompositionParameters &p      = static_cast<ThermalDecomposition::Impl *>(user)->model->par;
+  const realtype                        lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
   if (!(T > 0)) return 1;
   const realtype k = p.Z * std::exp(-p.T_a / T), r = k * (1 - lambda);
   const realtype dr_dl = -k, dr_dT = r * p.T_a / (T * T);
@@ -68,8 +68,8 @@ int Jac(realtype, N_Vector y, N_Vector, SUNMatrix J, void *user, N_Vector, N_Vec
 // Root functions of IgnitionDelay (upward crossings): T - T_target and, if enabled, dT/dt - rate.
 int IgnitionRoots(realtype, N_Vector y, realtype *g, void *user)
 {
-  const ThermalDecomposition::Impl &I = *static_cast<ThermalDecomposition::Impl *>(user);
-  const realtype lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
+  const ThermalDecomposition::Impl &I      = *static_cast<ThermalDecomposition::Impl *>(user);
+  const realtype                    lambda = NV_Ith_S(y, 0), T = NV_Ith_S(y, 1);
   g[0] = T - I.T_target;
   if (I.rate > 0) {
     PetscReal dl, dT;
@@ -91,10 +91,7 @@ void ThermalDecomposition::Rates(PetscReal lambda, PetscReal T, PetscReal *dlamb
   *dT               = (par.Q * r + par.h * (par.T_env - T)) / par.c;
 }
 
-PetscReal ThermalDecomposition::AdiabaticInductionTime(PetscReal T0) const
-{
-  return par.c * T0 * T0 / (par.Q * par.Z * par.T_a) * std::exp(par.T_a / T0);
-}
+PetscReal ThermalDecomposition::AdiabaticInductionTime(PetscReal T0) const { return par.c * T0 * T0 / (par.Q * par.Z * par.T_a) * std::exp(par.T_a / T0); }
 
 #define CVCall(expr) \
   do { \
@@ -210,7 +207,8 @@ PetscErrorCode ThermalDecomposition::SetFromOptions(MPI_Comm comm, const char ma
 
 PetscErrorCode ThermalDecomposition::View(PetscViewer viewer) const
 {
-  return PetscViewerASCIIPrintf(viewer, "  thermal decomposition: Z %g 1/s, T_a %g K, Q %g J/kg, c %g J/(kg K), h %g W/(kg K), T_env %g K; runaway at T0 + %g K or dT/dt > %g K/s; CVODE BDF rtol %g\n", (double)par.Z, (double)par.T_a, (double)par.Q, (double)par.c, (double)par.h, (double)par.T_env, (double)par.runaway_rise, (double)par.runaway_rate, (double)par.rtol);
+  return PetscViewerASCIIPrintf(viewer, "  thermal decomposition: Z %g 1/s, T_a %g K, Q %g J/kg, c %g J/(kg K), h %g W/(kg K), T_env %g K; runaway at T0 + %g K or dT/dt > %g K/s; CVODE BDF rtol %g\n", (double)par.Z, (double)par.T_a, (double)par.Q,
+                                (double)par.c, (double)par.h, (double)par.T_env, (double)par.runaway_rise, (double)par.runaway_rate, (double)par.rtol);
 }
 
 } // namespace burst

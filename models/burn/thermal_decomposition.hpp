@@ -35,8 +35,8 @@ struct ThermalDecompositionParameters {
   PetscReal T_env = 300;     // environment temperature, K
   // Runaway (ignition) criteria of IgnitionDelay: T reaches T0 + runaway_rise, or dT/dt exceeds
   // runaway_rate (if > 0), whichever comes first.
-  PetscReal runaway_rise = 500; // K
-  PetscReal runaway_rate = 0;   // K/s (0: off)
+  PetscReal runaway_rise = 500;   // K
+  PetscReal runaway_rate = 0;     // K/s (0: off)
   PetscReal rtol         = 1e-10; // CVODE relative tolerance
 };
 
@@ -75,7 +75,8 @@ public:
 private:
   std::unique_ptr<Impl> impl_;
   long                  last_steps_ = 0;
-  PetscErrorCode        Start(PetscReal lambda, PetscReal T, int nroots);
+
+  PetscErrorCode Start(PetscReal lambda, PetscReal T, int nroots);
 };
 
 } // namespace burst

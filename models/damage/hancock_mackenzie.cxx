@@ -31,10 +31,7 @@ public:
     }
   }
   PetscErrorCode SetFromOptions(PetscOptionItems *, const MaterialConstants &) override { return PETSC_SUCCESS; }
-  PetscErrorCode View(PetscViewer viewer) const override
-  {
-    return PetscViewerASCIIPrintf(viewer, "  damage: hancock_mackenzie eps_f = 1.65 exp(-1.5 sigma_m/sigma_eq), eps_f >= %g\n", (double)kMinFractureStrain);
-  }
+  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "  damage: hancock_mackenzie eps_f = 1.65 exp(-1.5 sigma_m/sigma_eq), eps_f >= %g\n", (double)kMinFractureStrain); }
 };
 
 PetscErrorCode HancockMacKenzieDamageCreate(SubModel **model) { return CreateSubModel<HancockMacKenzieDamage>(model); }

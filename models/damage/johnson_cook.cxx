@@ -25,18 +25,18 @@ namespace burst {
 class JohnsonCookDamage final : public DamageModel {
 public:
   static constexpr PetscReal kMinFractureStrain = 1e-6;
-  PetscReal D1 = 0, D2 = 0, D3 = 0, D4 = 0, D5 = 0, rate0 = 1, min_rate = 1e-3, triaxiality_limit = 1.5, room_temperature = 298;
+  PetscReal                  D1 = 0, D2 = 0, D3 = 0, D4 = 0, D5 = 0, rate0 = 1, min_rate = 1e-3, triaxiality_limit = 1.5, room_temperature = 298;
 
   // Fracture strain at triaxiality t, plastic rate r (1/s), temperature T and melt temperature Tm.
   inline PetscReal FractureStrain(PetscReal t, PetscReal r, PetscReal T, PetscReal Tm) const
   {
     PetscReal sigma_star = t;
     if (std::isnan(sigma_star)) sigma_star = 0;
-    sigma_star                = PetscMin(PetscMax(sigma_star, -triaxiality_limit), triaxiality_limit);
-    const PetscReal rate_star = PetscMax(r, min_rate) / rate0;
+    sigma_star                 = PetscMin(PetscMax(sigma_star, -triaxiality_limit), triaxiality_limit);
+    const PetscReal rate_star  = PetscMax(r, min_rate) / rate0;
     PetscReal       homologous = Tm > room_temperature ? (T - room_temperature) / (Tm - room_temperature) : 1;
-    homologous                = PetscMin(PetscMax(homologous, 0.0), 1.0);
-    const PetscReal eps_f     = (D1 + D2 * std::exp(D3 * sigma_star)) * (1 + D4 * std::log(rate_star)) * (1 + D5 * homologous);
+    homologous                 = PetscMin(PetscMax(homologous, 0.0), 1.0);
+    const PetscReal eps_f      = (D1 + D2 * std::exp(D3 * sigma_star)) * (1 + D4 * std::log(rate_star)) * (1 + D5 * homologous);
     return eps_f > kMinFractureStrain ? eps_f : kMinFractureStrain; // NaN-safe: a NaN becomes the floor
   }
 
@@ -70,7 +70,8 @@ public:
 
   PetscErrorCode View(PetscViewer viewer) const override
   {
-    return PetscViewerASCIIPrintf(viewer, "  damage: johnson_cook D1 %g, D2 %g, D3 %g, D4 %g, D5 %g, reference rate %g 1/s, rate floor %g 1/s, |sigma*| <= %g, T_r %g K, eps_f >= %g\n", (double)D1, (double)D2, (double)D3, (double)D4, (double)D5, (double)rate0, (double)min_rate, (double)triaxiality_limit, (double)room_temperature, (double)kMinFractureStrain);
+    return PetscViewerASCIIPrintf(viewer, "  damage: johnson_cook D1 %g, D2 %g, D3 %g, D4 %g, D5 %g, reference rate %g 1/s, rate floor %g 1/s, |sigma*| <= %g, T_r %g K, eps_f >= %g\n", (double)D1, (double)D2, (double)D3, (double)D4, (double)D5,
+                                  (double)rate0, (double)min_rate, (double)triaxiality_limit, (double)room_temperature, (double)kMinFractureStrain);
   }
 };
 

@@ -32,7 +32,7 @@ public:
   PetscErrorCode UpdateStress(const MaterialPointFields &f, PetscInt id, PetscReal dt) override
   {
     const PetscReal lambda = elastic.lame_lambda, mu = elastic.shear_modulus;
-    const Mat3      I      = Mat3::Identity();
+    const Mat3      I = Mat3::Identity();
     for (PetscInt p = 0; p < f.n; ++p) {
       if (f.material[p] != id) continue;
       Mat3CMap        F(f.F + 9 * p), L(f.L + 9 * p);

@@ -4,7 +4,7 @@
 #include <petscsys.h>
 
 namespace burst {
-using Mat3      = Eigen::Matrix<PetscReal, 3, 3, Eigen::RowMajor>;
-using Mat3Map   = Eigen::Map<Mat3>;
-using Mat3CMap  = Eigen::Map<const Mat3>;
+using Mat3     = Eigen::Matrix<PetscReal, 3, 3, Eigen::RowMajor>;
+using Mat3Map  = Eigen::Map<Mat3>;
+using Mat3CMap = Eigen::Map<const Mat3>;
 } // namespace burst

@@ -7,7 +7,8 @@ namespace burst {
 class HypoelasticEOS final : public EquationOfState {
 public:
   PetscReal bulk_modulus = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) {
       c.pressure[k]     = -c.mean_stress_old[k] - bulk_modulus * c.trace_D[k] * c.dt;

@@ -21,8 +21,8 @@ public:
     if (zeta >= 0) {
       const PetscReal num = zeta * (1 + (1 - 0.5 * Gamma0) * zeta), den = 1 - (S - 1) * zeta;
       const PetscReal dnum = 1 + 2 * (1 - 0.5 * Gamma0) * zeta;
-      p       = K0 * num / (den * den);
-      dp_drho = K0 * (dnum / (den * den) + 2 * (S - 1) * num / (den * den * den)) / rho0;
+      p                    = K0 * num / (den * den);
+      dp_drho              = K0 * (dnum / (den * den) + 2 * (S - 1) * num / (den * den * den)) / rho0;
     } else {
       p       = K0 * zeta;
       dp_drho = K0 / rho0;

@@ -19,7 +19,7 @@ enum class YieldType : int { VonMises = 0, GTN = 1 };
 struct ReturnSettings {
   YieldType     yield = YieldType::VonMises;
   GTNParameters gtn;
-  PetscReal     tolerance = 1e-10; // relative tolerance of the Newton iterations on sigma_f
+  PetscReal     tolerance      = 1e-10; // relative tolerance of the Newton iterations on sigma_f
   PetscInt      max_iterations = 100;
 };
 
@@ -32,10 +32,10 @@ public:
   // and for GTN the pressure (the material updates the porosity from trace_plastic_strain).
   // Returns non-zero on a Newton failure.
   virtual PetscErrorCode Return(Chunk &c, const ReturnSettings &settings) const = 0;
-  virtual int         NumHistory() const { return 0; }
-  virtual const char *HistoryName(int) const { return ""; }
-  virtual PetscReal   InitialHistory(int) const { return 0; }
-  PetscReal           min_rate = 1e-3; // floor of the plastic strain rate fed to the model, 1/s
+  virtual int            NumHistory() const { return 0; }
+  virtual const char    *HistoryName(int) const { return ""; }
+  virtual PetscReal      InitialHistory(int) const { return 0; }
+  PetscReal              min_rate = 1e-3; // floor of the plastic strain rate fed to the model, 1/s
 };
 
 template <class Derived>

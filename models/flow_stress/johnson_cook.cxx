@@ -45,7 +45,7 @@ private:
   // anchors: a point's values never depend on the point evaluated before it (the same on any rank
   // count, and whichever lane runs it).
   static constexpr PetscReal kSeriesRange = 0.0078125;
-  mutable PetscReal          anchor_n_ = std::numeric_limits<PetscReal>::quiet_NaN();
+  mutable PetscReal          anchor_n_    = std::numeric_limits<PetscReal>::quiet_NaN();
   mutable PetscReal          binomial_[9] = {}; // n choose k, k = 0..8, for anchor_n_
 
   // c0 + c1 x + ... + c8 x^8 by Estrin's scheme (a dependency chain of four multiply-adds)
@@ -86,15 +86,14 @@ private:
   }
 
 public:
-
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const { Evaluate(x, y, lane_); }
 
   inline void Evaluate(const FlowPoint &x, FlowValue &y, Lane &lane) const
   {
     if (x.delta_strain == 0) lane.eps = lane.rate = std::numeric_limits<PetscReal>::quiet_NaN(); // a new point (see Power)
-    const PetscReal eps    = x.plastic_strain > 0 ? x.plastic_strain : 0;
-    const PetscReal power  = eps > 0 ? Power(eps, lane) : 0;
-    const PetscReal strain = A + B * power;
+    const PetscReal eps      = x.plastic_strain > 0 ? x.plastic_strain : 0;
+    const PetscReal power    = eps > 0 ? Power(eps, lane) : 0;
+    const PetscReal strain   = A + B * power;
     const PetscReal d_strain = eps > 0 ? B * n * power / eps : (n < 1 ? 0 : (n == 1 ? B : 0));
     PetscReal       rate, d_rate;
     if (x.plastic_strain_rate == 0) { // (the yield test of every point): the floor's rate factor, kept; slope 0
@@ -154,14 +153,16 @@ public:
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "m").c_str(), m, 0, 10, PETSC_TRUE));
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "reference_rate").c_str(), rate0, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "min_rate").c_str(), min_rate, 0, PETSC_MAX_REAL, PETSC_TRUE));
-    PetscCheck(C == 0 || 1 + C * std::log(min_rate / rate0) > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%smin_rate = %g makes the Johnson-Cook rate factor 1 + C ln(rate*) non-positive; it must exceed %g 1/s", P.c_str(), (double)min_rate, (double)(rate0 * std::exp(-1 / C)));
+    PetscCheck(C == 0 || 1 + C * std::log(min_rate / rate0) > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%smin_rate = %g makes the Johnson-Cook rate factor 1 + C ln(rate*) non-positive; it must exceed %g 1/s", P.c_str(), (double)min_rate,
+               (double)(rate0 * std::exp(-1 / C)));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
   PetscErrorCode View(PetscViewer viewer) const override
   {
     PetscFunctionBeginUser;
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  flow stress: johnson_cook A %g Pa, B %g Pa, n %g, C %g, m %g, reference rate %g 1/s, T_r %g K, rate floor %g 1/s\n", (double)A, (double)B, (double)n, (double)C, (double)m, (double)rate0, (double)room_temperature, (double)min_rate));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  flow stress: johnson_cook A %g Pa, B %g Pa, n %g, C %g, m %g, reference rate %g 1/s, T_r %g K, rate floor %g 1/s\n", (double)A, (double)B, (double)n, (double)C, (double)m, (double)rate0,
+                                     (double)room_temperature, (double)min_rate));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };

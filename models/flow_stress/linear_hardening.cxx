@@ -27,10 +27,7 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  PetscErrorCode View(PetscViewer viewer) const override
-  {
-    return PetscViewerASCIIPrintf(viewer, "  flow stress: linear_hardening sigma_0 %g Pa, H %g Pa\n", (double)yield_stress, (double)modulus);
-  }
+  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "  flow stress: linear_hardening sigma_0 %g Pa, H %g Pa\n", (double)yield_stress, (double)modulus); }
 };
 
 PetscErrorCode LinearHardeningCreate(SubModel **model) { return CreateSubModel<LinearHardening>(model); }

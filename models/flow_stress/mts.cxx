@@ -38,15 +38,21 @@ public:
   PetscReal a0 = 0, a1 = 0, a2 = 0, a3 = 0, theta_IV = 0, alpha = 0, tanh_alpha = 1;
   PetscReal edot_es0 = 0, g0es = 0, sigma_es0 = 0;
 
-  struct Scale { PetscReal S = 1, d_rate = 0, d_T = 0; };
-  struct Theta { PetscReal theta, d_se, d_theta0, d_ses; };
+  struct Scale {
+    PetscReal S = 1, d_rate = 0, d_T = 0;
+  };
+  struct Theta {
+    PetscReal theta, d_se, d_theta0, d_ses;
+  };
   // Rate- and temperature-dependent terms of one evaluation.
   struct State {
     Scale     Si, Se;
     PetscReal ses, ses_r, ses_T, th0, th0_r, th0_T;
     PetscReal rate_slope; // d(smoothly floored rate)/d(plastic rate), flow_point.hpp
   };
-  struct Evolved { PetscReal se, d_de, d_rate, d_T; };
+  struct Evolved {
+    PetscReal se, d_de, d_rate, d_T;
+  };
 
   // S = [1 - z^{1/q}]^{1/p}, z = (k/b^3)(T/mu)/g0 ln(rate0/rate) clamped at 0, inner bracket too.
   inline Scale Factor(PetscReal T, PetscReal mu, PetscReal rate, PetscReal g0, PetscReal rate0, PetscReal p, PetscReal q) const
@@ -69,15 +75,15 @@ public:
     const PetscReal T = x.temperature, mu = x.shear_modulus, r = SmoothRateFloor(x.plastic_strain_rate, min_rate, &st.rate_slope);
     if (sigma_i > 0) st.Si = Factor(T, mu, r, g0i, edot0i, p_i, q_i);
     else st.Si = Scale{0, 0, 0};
-    st.Se                = Factor(T, mu, r, g0e, edot0e, p_e, q_e);
-    const PetscReal e_T  = k_over_b3 / (mu * g0es), L = std::log(r / edot_es0); // exponent = e_T T
-    st.ses               = sigma_es0 * std::exp(e_T * T * L);
-    st.ses_r             = st.ses * e_T * T / r;
-    st.ses_T             = st.ses * e_T * L;
-    const PetscReal sq   = std::sqrt(r);
-    st.th0               = a0 + a1 * std::log(r) + a2 * sq - a3 * T;
-    st.th0_r             = a1 / r + 0.5 * a2 / sq;
-    st.th0_T             = -a3;
+    st.Se               = Factor(T, mu, r, g0e, edot0e, p_e, q_e);
+    const PetscReal e_T = k_over_b3 / (mu * g0es), L = std::log(r / edot_es0); // exponent = e_T T
+    st.ses             = sigma_es0 * std::exp(e_T * T * L);
+    st.ses_r           = st.ses * e_T * T / r;
+    st.ses_T           = st.ses * e_T * L;
+    const PetscReal sq = std::sqrt(r);
+    st.th0             = a0 + a1 * std::log(r) + a2 * sq - a3 * T;
+    st.th0_r           = a1 / r + 0.5 * a2 / sq;
+    st.th0_T           = -a3;
     if (st.th0 < 0) st.th0 = st.th0_r = st.th0_T = 0;
     return st;
   }
@@ -87,7 +93,7 @@ public:
   // small against theta0 (copper, theta_IV = 0), positive for HY-100 (stage IV).
   inline Theta Hardening(PetscReal se, const State &st) const
   {
-    const PetscReal X = se / st.ses;
+    const PetscReal X  = se / st.ses;
     const PetscReal th = std::tanh(alpha * X), F = th / tanh_alpha, dF = alpha * (1 - th * th) / tanh_alpha;
     return Theta{st.th0 * (1 - F) + theta_IV * F, (theta_IV - st.th0) * dF / st.ses, 1 - F, -(theta_IV - st.th0) * dF * X / st.ses};
   }
@@ -111,13 +117,13 @@ public:
       y = FlowValue();
       return;
     }
-    const State     st = Terms(x);
-    const Evolved   e  = Evolve(x.history[0], x.delta_strain, st);
+    const State     st    = Terms(x);
+    const Evolved   e     = Evolve(x.history[0], x.delta_strain, st);
     const PetscReal ratio = x.shear_modulus / mu0;
-    y.sigma         = sigma_a + ratio * (st.Si.S * sigma_i + st.Se.S * e.se);
-    y.d_strain      = ratio * st.Se.S * e.d_de;
-    y.d_rate        = st.rate_slope * ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
-    y.d_temperature = ratio * (st.Si.d_T * sigma_i + st.Se.d_T * e.se + st.Se.S * e.d_T);
+    y.sigma               = sigma_a + ratio * (st.Si.S * sigma_i + st.Se.S * e.se);
+    y.d_strain            = ratio * st.Se.S * e.d_de;
+    y.d_rate              = st.rate_slope * ratio * (st.Si.d_rate * sigma_i + st.Se.d_rate * e.se + st.Se.S * e.d_rate);
+    y.d_temperature       = ratio * (st.Si.d_T * sigma_i + st.Se.d_T * e.se + st.Se.S * e.d_T);
   }
 
   inline void UpdateHistory(const FlowPoint &x, PetscReal de, PetscReal *history) const
@@ -132,6 +138,7 @@ public:
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const MaterialConstants &material) override
   {
     const std::string P = PetscOptionsObject->prefix;
+
     auto Range = [&](const char *name, PetscReal v, PetscReal lo, PetscReal hi, PetscBool open) { return CheckRange(PETSC_COMM_WORLD, ("-" + P + name).c_str(), v, lo, hi, open); };
     PetscFunctionBeginUser;
     mu0 = material.shear_modulus;
@@ -189,7 +196,8 @@ public:
     PetscFunctionBeginUser;
     PetscCall(PetscViewerASCIIPrintf(viewer, "  flow stress: mts sigma_a %g Pa, k/b^3 %g Pa/K, mu0 %g Pa, rate floor %g 1/s\n", (double)sigma_a, (double)k_over_b3, (double)mu0, (double)min_rate));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    intrinsic: sigma_i %g Pa, g0i %g, edot0i %g 1/s, p_i %g, q_i %g\n", (double)sigma_i, (double)g0i, (double)edot0i, (double)p_i, (double)q_i));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "    evolution: g0e %g, edot0e %g 1/s, p_e %g, q_e %g; theta0 = %g + %g ln(edot) + %g sqrt(edot) - %g T Pa, theta_IV %g Pa, alpha %g (F = tanh(alpha X)/tanh(alpha))\n", (double)g0e, (double)edot0e, (double)p_e, (double)q_e, (double)a0, (double)a1, (double)a2, (double)a3, (double)theta_IV, (double)alpha));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "    evolution: g0e %g, edot0e %g 1/s, p_e %g, q_e %g; theta0 = %g + %g ln(edot) + %g sqrt(edot) - %g T Pa, theta_IV %g Pa, alpha %g (F = tanh(alpha X)/tanh(alpha))\n", (double)g0e, (double)edot0e,
+                                     (double)p_e, (double)q_e, (double)a0, (double)a1, (double)a2, (double)a3, (double)theta_IV, (double)alpha));
     PetscCall(PetscViewerASCIIPrintf(viewer, "    saturation: sigma_es0 %g Pa, edot_es0 %g 1/s, g0es %g\n", (double)sigma_es0, (double)edot_es0, (double)g0es));
     PetscFunctionReturn(PETSC_SUCCESS);
   }

@@ -21,9 +21,9 @@
 namespace burst {
 
 struct GasEOSPoint {
-  PetscReal pressure;    // Pa
-  PetscReal dp_drho;     // (dP/drho)_T, m^2/s^2
-  PetscReal dp_dT;       // (dP/dT)_rho, Pa/K
+  PetscReal pressure; // Pa
+  PetscReal dp_drho;  // (dP/drho)_T, m^2/s^2
+  PetscReal dp_dT;    // (dP/dT)_rho, Pa/K
 };
 
 class GasEOS {
@@ -81,8 +81,8 @@ public:
     return s.dp_dT / (rho * s.dp_drho);
   }
   // e(rho, T), J/kg
-  PetscReal InternalEnergy(PetscReal rho, PetscReal T) const { return cv * T + ColdEnergy(rho); }
-  std::string name_;  // registered model name
+  PetscReal   InternalEnergy(PetscReal rho, PetscReal T) const { return cv * T + ColdEnergy(rho); }
+  std::string name_; // registered model name
 };
 
 using GasEOSCreateFn = PetscErrorCode (*)(GasEOS **);

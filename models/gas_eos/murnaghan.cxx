@@ -80,7 +80,7 @@ public:
 
 private:
   PetscReal inv_rho0_ = 0, inv_nK_ = 0, inv_K_rho0_ = 0, m_ = 0;
-  void Update()
+  void      Update()
   {
     inv_rho0_   = 1 / rho0;
     inv_nK_     = 1 / (n * K);

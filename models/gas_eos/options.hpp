@@ -6,6 +6,9 @@
 namespace burst {
 
 // -<material>_<opt> as a real with its range checked (pointwise_registry.hpp).
-inline PetscErrorCode GasEOSOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower) { return PointwiseOptionsReal(PetscOptionsObject, opt, help, value, lo, hi, open_lower); }
+inline PetscErrorCode GasEOSOptionsReal(PetscOptionItems *PetscOptionsObject, const char opt[], const char help[], PetscReal *value, PetscReal lo, PetscReal hi, PetscBool open_lower)
+{
+  return PointwiseOptionsReal(PetscOptionsObject, opt, help, value, lo, hi, open_lower);
+}
 
 } // namespace burst

@@ -21,7 +21,7 @@ PetscReal GasEOS::DensityAtEnergy(PetscReal p, PetscReal e, PetscReal guess) con
     const PetscReal T = (e - ColdEnergy(rho)) / cv;
     if (!(T >= 0)) return PetscReal(1);
     const GasEOSPoint s = Evaluate(rho, T);
-    *slope = s.dp_drho - s.dp_dT * (s.pressure - T * s.dp_dT) / (rho * rho * cv);
+    *slope              = s.dp_drho - s.dp_dT * (s.pressure - T * s.dp_dT) / (rho * rho * cv);
     return s.pressure - p;
   };
   PetscReal lo = 0, hi = guess > 0 && std::isfinite(guess) ? guess : 1, slope = 0;
@@ -35,7 +35,7 @@ PetscReal GasEOS::DensityAtEnergy(PetscReal p, PetscReal e, PetscReal guess) con
   if (f == 0) return hi;
   PetscReal x = guess > lo && guess < hi ? guess : 0.5 * (lo + hi);
   for (int it = 0; it < 300; ++it) {
-    PetscReal fx = residual(x, &slope);
+    PetscReal  fx    = residual(x, &slope);
     const bool dense = fx > 0 && (e - ColdEnergy(x)) < 0;
     if (fx == 0 && !dense) return x;
     if (fx < 0) lo = x;

@@ -32,7 +32,7 @@ public:
     const PetscReal rho = (p + gamma * p_inf) / ((gamma - 1) * e);
     return (rho > 0 && rho < PETSC_MAX_REAL) ? rho : -1;
   }
-  bool      HasColdEnergy() const override { return p_inf != 0; }
+  bool HasColdEnergy() const override { return p_inf != 0; }
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const char[]) override
   {
@@ -42,10 +42,7 @@ public:
     PetscCall(GasEOSOptionsReal(PetscOptionsObject, "-p_inf", "Stiffened gas: stiffening pressure p_inf (Pa), >= 0", &p_inf, 0, PETSC_MAX_REAL, PETSC_FALSE));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
-  PetscErrorCode View(PetscViewer viewer) const override
-  {
-    return PetscViewerASCIIPrintf(viewer, "  gas equation of state: stiffened_gas gamma %g, c_v %g J/(kg K), p_inf %g Pa\n", (double)gamma, (double)cv, (double)p_inf);
-  }
+  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "  gas equation of state: stiffened_gas gamma %g, c_v %g J/(kg K), p_inf %g Pa\n", (double)gamma, (double)cv, (double)p_inf); }
 };
 
 PetscErrorCode StiffenedGasCreate(GasEOS **eos)

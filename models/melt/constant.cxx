@@ -7,7 +7,8 @@ namespace burst {
 class ConstantMelt final : public MeltModel {
 public:
   PetscReal Tm = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) c.melt_temperature[k] = Tm;
   }

@@ -10,7 +10,8 @@ namespace burst {
 class SCGMelt final : public MeltModel {
 public:
   PetscReal Tm0 = 0, Gamma0 = 0, a = 0, rho0 = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     const PetscReal exponent = 2 * (Gamma0 - a - 1.0 / 3.0);
     for (int k = 0; k < c.n; ++k) {

@@ -57,23 +57,23 @@ constexpr const char *kPlasticStrain     = state_field::plastic_strain;
 constexpr const char *kPlasticStrainRate = state_field::plastic_strain_rate;
 constexpr const char *kPorosity          = "porosity";
 constexpr const char *kDamage            = "damage";
-constexpr const char *kRotation          = "rotation";      // R of the polar decomposition at t_n, bs 9
-constexpr const char *kFlowHistory       = "flow_history";  // flow-model history, bs kMaxHistory
-constexpr const char *kFlowStress        = "flow_stress";   // Pa (output)
-constexpr const char *kFailed            = state_field::failed; // int: failure criterion bits, 0 = intact
-constexpr const char *kFailureTime       = "failure_time";  // s
-constexpr const char *kUnstable          = "unstable";      // int: stability bits at the last step
+constexpr const char *kRotation          = "rotation";           // R of the polar decomposition at t_n, bs 9
+constexpr const char *kFlowHistory       = "flow_history";       // flow-model history, bs kMaxHistory
+constexpr const char *kFlowStress        = "flow_stress";        // Pa (output)
+constexpr const char *kFailed            = state_field::failed;  // int: failure criterion bits, 0 = intact
+constexpr const char *kFailureTime       = "failure_time";       // s
+constexpr const char *kUnstable          = "unstable";           // int: stability bits at the last step
 constexpr const char *kPlasticDilatation = "plastic_dilatation"; // accumulated tr(eps_p) (GTN), -
 constexpr const char *kFailureEnergy     = "failure_energy";     // elastic energy released by the failure response, J
 constexpr const char *kPlasticWork       = "plastic_work";       // accumulated plastic work sigma : d eps_p V, J
 constexpr const char *kPlasticHeat       = "plastic_heat";       // the part of it turned into heat (eq. 18), J
 constexpr const char *kElasticEnergy     = "elastic_energy";     // stored elastic energy (p^2/(2K) + q^2/(6 mu)) V now, J
 // Regularisation state (registered only when a material uses -MAT_regularization)
-constexpr const char *kNonlocalStrain    = "nonlocal_damage";        // D_bar: initial damage + sum of the nonlocal averages of Delta D, -
-constexpr const char *kSofteningDisp     = "softening_displacement"; // u_p = h_p sum Delta eps_p since the criterion was met, m
-constexpr const char *kSofteningLimit    = "softening_limit";        // u_f = 2 G_f / sigma_i, m (0: not softening)
-constexpr const char *kSoftening         = "softening";              // omega = u_p / u_f in [0, 1] (output)
-constexpr const char *kSofteningBits     = state_field::softening_criteria; // int: the criterion bits that started the softening
+constexpr const char *kNonlocalStrain = "nonlocal_damage";               // D_bar: initial damage + sum of the nonlocal averages of Delta D, -
+constexpr const char *kSofteningDisp  = "softening_displacement";        // u_p = h_p sum Delta eps_p since the criterion was met, m
+constexpr const char *kSofteningLimit = "softening_limit";               // u_f = 2 G_f / sigma_i, m (0: not softening)
+constexpr const char *kSoftening      = "softening";                     // omega = u_p / u_f in [0, 1] (output)
+constexpr const char *kSofteningBits  = state_field::softening_criteria; // int: the criterion bits that started the softening
 
 // Views of the model's per-particle state, gotten together (the members in declaration order, so a
 // structured binding names them).
@@ -111,10 +111,7 @@ inline std::uint64_t SplitMix64(std::uint64_t x)
   x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
   return x ^ (x >> 31);
 }
-inline PetscReal Uniform(std::uint64_t seed, std::uint64_t id, std::uint64_t stream)
-{
-  return ((SplitMix64(SplitMix64(seed ^ SplitMix64(id)) + stream) >> 11) + 0.5) * (1.0 / 9007199254740992.0);
-}
+inline PetscReal Uniform(std::uint64_t seed, std::uint64_t id, std::uint64_t stream) { return ((SplitMix64(SplitMix64(seed ^ SplitMix64(id)) + stream) >> 11) + 0.5) * (1.0 / 9007199254740992.0); }
 inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stream)
 {
   const PetscReal u1 = Uniform(seed, id, 2 * stream), u2 = Uniform(seed, id, 2 * stream + 1);
@@ -124,7 +121,7 @@ inline PetscReal Normal(std::uint64_t seed, std::uint64_t id, std::uint64_t stre
 // Views of the regularisation state (all null unless the fields are registered).
 struct RegularizationFields {
   PetscReal       *source = nullptr, *average = nullptr, *strain = nullptr, *disp = nullptr, *limit = nullptr, *omega = nullptr;
-  PetscInt        *bits = nullptr;
+  PetscInt        *bits        = nullptr;
   const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the particles have them
   const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver), m^3
   PetscInt         dim         = 0;
@@ -165,36 +162,36 @@ enum FailureBits : int { FailMelt = 1, FailTepla = 2, FailPorosity = 4, FailStab
 enum class FailureResponse : int { None = 0, ZeroStress = 1, NoTension = 2, NoShear = 3 };
 enum class Regularization : int { None = 0, Nonlocal = 1, CrackBand = 2 };
 const char *const kRegularizationNames[] = {"none", "nonlocal", "crack_band"};
-const char *const kResponseNames[] = {"none", "zero_stress", "no_tension", "no_shear"};
-const char *const kFailureNames[] = {"melt", "tepla", "porosity", "stability", "strength"};
+const char *const kResponseNames[]       = {"none", "zero_stress", "no_tension", "no_shear"};
+const char *const kFailureNames[]        = {"melt", "tepla", "porosity", "stability", "strength"};
 } // namespace
 
 class ElasticPlastic final : public Material {
 public:
-  MaterialConstants                  constants;
-  std::unique_ptr<EquationOfState>   eos;
-  std::unique_ptr<ShearModulusModel> shear;
-  std::unique_ptr<MeltModel>         melt;
-  std::unique_ptr<SpecificHeatModel> specific_heat;
-  std::unique_ptr<FlowStress>        flow;
-  std::unique_ptr<DamageModel>       damage;
+  MaterialConstants                            constants;
+  std::unique_ptr<EquationOfState>             eos;
+  std::unique_ptr<ShearModulusModel>           shear;
+  std::unique_ptr<MeltModel>                   melt;
+  std::unique_ptr<SpecificHeatModel>           specific_heat;
+  std::unique_ptr<FlowStress>                  flow;
+  std::unique_ptr<DamageModel>                 damage;
   std::vector<std::unique_ptr<StabilityCheck>> stability;
-  ReturnSettings                     settings;
-  PetscReal                          taylor_quinney = 0.9;
-  PetscBool                          adiabatic      = PETSC_TRUE;
+  ReturnSettings                               settings;
+  PetscReal                                    taylor_quinney = 0.9;
+  PetscBool                                    adiabatic      = PETSC_TRUE;
   // Porosity (eqs. 15-17) and initial distributions
   PetscBool porosity_growth = PETSC_FALSE, porosity_nucleation = PETSC_FALSE, nucleation_tension_only = PETSC_TRUE;
   PetscReal nucleation_fraction = 0.1, nucleation_strain = 0.3, nucleation_deviation = 0.1; // f_n, eps_n, s_n
   PetscReal porosity_mean = 0, porosity_deviation = 0, damage_mean = 0, damage_deviation = 0;
   PetscInt  seed = 1;
   // Failure
-  int             failure_criteria = FailMelt;
-  FailureResponse failure_response = FailureResponse::None;
-  PetscReal tepla_critical_porosity = 0.3; // f_c of eq. 22 and of the critical-porosity criterion
+  int             failure_criteria        = FailMelt;
+  FailureResponse failure_response        = FailureResponse::None;
+  PetscReal       tepla_critical_porosity = 0.3; // f_c of eq. 22 and of the critical-porosity criterion
   // Regularisation (issue 12; see the head of the file)
   Regularization regularization        = Regularization::None;
-  PetscReal      regularization_length = 0; // ell, m (nonlocal)
-  PetscReal      fracture_energy       = 0; // G_f, J/m^2 (crack_band)
+  PetscReal      regularization_length = 0;           // ell, m (nonlocal)
+  PetscReal      fracture_energy       = 0;           // G_f, J/m^2 (crack_band)
   PetscBool      tepla_damage          = PETSC_FALSE; // TEPLA-F with the accumulated damage D
 
   PetscReal NonlocalLength() const override { return regularization == Regularization::Nonlocal ? regularization_length : 0; }
@@ -214,7 +211,7 @@ public:
     PetscCall(PetscOptionsReal("-taylor_quinney", "Fraction of plastic work converted to heat, chi of eq. 18 (-), in [0, 1]", "", taylor_quinney, &taylor_quinney, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "taylor_quinney").c_str(), taylor_quinney, 0, 1, PETSC_FALSE));
     PetscCall(PetscOptionsBool("-adiabatic", "Plastic work heats the particle (eq. 18); false keeps the temperature (isothermal)", "", adiabatic, &adiabatic, nullptr));
-    int yield = (int)settings.yield;
+    int               yield         = (int)settings.yield;
     const char *const yield_names[] = {"von_mises", "gtn"};
     PetscCall(OptionsChoice(PetscOptionsObject, "-yield_type", "Yield condition: von_mises (eq. 12) or gtn (Gurson-Tvergaard-Needleman, eqs. 13-14)", yield_names, 2, &yield, nullptr));
     settings.yield = (YieldType)yield;
@@ -226,7 +223,8 @@ public:
     PetscCall(PetscOptionsReal("-return_tolerance", "Relative tolerance of the return-mapping Newton iterations (-)", "", settings.tolerance, &settings.tolerance, nullptr));
     PetscCall(PetscOptionsBool("-porosity_growth", "Void growth (eq. 16), (1 - f) tr(D_p); zero with von Mises yield", "", porosity_growth, &porosity_growth, nullptr));
     PetscCall(PetscOptionsBool("-porosity_nucleation", "Strain-controlled void nucleation (eq. 17)", "", porosity_nucleation, &porosity_nucleation, nullptr));
-    PetscCall(PetscOptionsBool("-porosity_nucleation_tension_only", "Nucleate voids only under tensile mean stress (with GTN, nucleation under strong compression collapses the pressure)", "", nucleation_tension_only, &nucleation_tension_only, nullptr));
+    PetscCall(
+      PetscOptionsBool("-porosity_nucleation_tension_only", "Nucleate voids only under tensile mean stress (with GTN, nucleation under strong compression collapses the pressure)", "", nucleation_tension_only, &nucleation_tension_only, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_fraction", "Volume fraction of void-nucleating particles f_n (-)", "", nucleation_fraction, &nucleation_fraction, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_strain", "Mean nucleation strain eps_n (-) (NOTES: 0.3; Table 1 swaps it with s_n)", "", nucleation_strain, &nucleation_strain, nullptr));
     PetscCall(PetscOptionsReal("-porosity_nucleation_deviation", "Standard deviation of the nucleation strain s_n (-)", "", nucleation_deviation, &nucleation_deviation, nullptr));
@@ -239,8 +237,8 @@ public:
     PetscCheck(nucleation_deviation > 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%sporosity_nucleation_deviation must be > 0", P.c_str());
     PetscCheck(porosity_mean >= 0 && porosity_mean < 1 && porosity_deviation >= 0, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Options -%sporosity_initial_mean in [0, 1) and -%sporosity_initial_deviation >= 0", P.c_str(), P.c_str());
     {
-      char    *names[8];
-      PetscInt n = 8;
+      char     *names[8];
+      PetscInt  n = 8;
       PetscBool set;
       PetscCall(PetscOptionsStringArray("-failure_criteria", "Failure criteria, any of melt, tepla, porosity, stability, strength (sigma_f <= 0), or none", "", names, &n, &set));
       if (set) {
@@ -261,10 +259,13 @@ public:
       failure_response = (FailureResponse)response;
     }
     PetscCall(PetscOptionsReal("-failure_porosity", "Critical porosity of TEPLA-F (eq. 22) and of the porosity criterion (-)", "", tepla_critical_porosity, &tepla_critical_porosity, nullptr));
-    PetscCall(PetscOptionsBool("-failure_tepla_damage", "TEPLA-F (eq. 22) as (f/f_c)^2 + D^2 with the accumulated damage D of the damage model (as ElasticPlastic.cc, which the paper ran), instead of eps_p/eps_f at the current triaxiality", "", tepla_damage, &tepla_damage, nullptr));
+    PetscCall(PetscOptionsBool("-failure_tepla_damage", "TEPLA-F (eq. 22) as (f/f_c)^2 + D^2 with the accumulated damage D of the damage model (as ElasticPlastic.cc, which the paper ran), instead of eps_p/eps_f at the current triaxiality", "",
+                               tepla_damage, &tepla_damage, nullptr));
     {
       int reg = (int)regularization;
-      PetscCall(OptionsChoice(PetscOptionsObject, "-regularization", "Length scale of failure (issue 12): none, nonlocal (failure drivers Delta D, Delta f averaged over -regularization_length), crack_band (linear softening after a criterion, energy -fracture_energy per unit crack area)", kRegularizationNames, 3, &reg, nullptr));
+      PetscCall(OptionsChoice(PetscOptionsObject, "-regularization",
+                              "Length scale of failure (issue 12): none, nonlocal (failure drivers Delta D, Delta f averaged over -regularization_length), crack_band (linear softening after a criterion, energy -fracture_energy per unit crack area)",
+                              kRegularizationNames, 3, &reg, nullptr));
       regularization = (Regularization)reg;
       PetscBool set_length, set_energy;
       PetscCall(PetscOptionsReal("-regularization_length", "Material length ell of the nonlocal average: radius of the weight (1 - r^2/ell^2)^2 per direction (m), > 0", "", regularization_length, &regularization_length, &set_length));
@@ -309,9 +310,9 @@ public:
     PetscCall(SubModelCreate(comm, list, constants, "damage", "none", "Damage model", &m));
     damage.reset(static_cast<DamageModel *>(m));
     {
-      char    *names[8];
-      PetscInt n = 8;
-      PetscBool set;
+      char             *names[8];
+      PetscInt          n = 8;
+      PetscBool         set;
       const std::string prefix = name_ + "_stability_";
       PetscCall(StabilityList(&list));
       PetscOptionsBegin(comm, prefix.c_str(), "Stability checks", "Material");
@@ -360,11 +361,11 @@ public:
     PetscCall(state.Get(*mp.state));
     PetscCall(reg.Get(mp));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
-    const PetscInt id = id_;
+    const PetscInt id                                                                                                = id_;
     for (PetscInt p = begin; p < end; ++p) {
       if (material[p] != id) continue;
       eps[p] = rate[p] = sigma_f[p] = dilatation[p] = released[p] = work[p] = heat[p] = elastic[p] = 0;
-      t_fail[p]                     = -1;
+      t_fail[p]                                                                                    = -1;
       failed[p] = unstable[p] = 0;
       const PetscReal fp      = porosity_mean + porosity_deviation * (porosity_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 0) : 0);
       const PetscReal Dp      = damage_mean + damage_deviation * (damage_deviation > 0 ? Normal((std::uint64_t)seed, (std::uint64_t)pid[p], 1) : 0);
@@ -376,8 +377,8 @@ public:
         for (int a = 0; a <= kNonlocalComponents; ++a) reg.source[(1 + kNonlocalComponents) * p + a] = 0;
         for (int a = 0; a < kNonlocalComponents; ++a) reg.average[kNonlocalComponents * p + a] = 0;
         reg.disp[p] = reg.limit[p] = reg.omega[p] = 0;
-        reg.strain[p]                              = D[p];
-        reg.bits[p]                                        = 0;
+        reg.strain[p]                             = D[p];
+        reg.bits[p]                               = 0;
       }
     }
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -410,16 +411,16 @@ public:
       for (; p < mp.n && c.n < kChunk; ++p)
         if (mp.material[p] == id) c.index[c.n++] = p;
       if (!c.n) break;
-      Kinematics(mp, state, reg, c, scratch);           // 1.
-      eos->Evaluate(c);                                 // 2. EOS, melt, shear modulus, specific heat
+      Kinematics(mp, state, reg, c, scratch); // 1.
+      eos->Evaluate(c);                       // 2. EOS, melt, shear modulus, specific heat
       melt->Evaluate(c);
       shear->Evaluate(c);
       specific_heat->Evaluate(c);
-      TrialDeviator(c);                                 // 3.
-      PetscCall(Return(mp, state, c, scratch));         // 4.
+      TrialDeviator(c);                                          // 3.
+      PetscCall(Return(mp, state, c, scratch));                  // 4.
       EvolveInternalVariables(state, reg, nonlocal, c, scratch); // 5.
-      Failure(mp, state, reg, nonlocal, c, scratch);    // 6. (with the crack band's softening)
-      StressAndEnergy(mp, state, reg, c, scratch);      // 7.
+      Failure(mp, state, reg, nonlocal, c, scratch);             // 6. (with the crack band's softening)
+      StressAndEnergy(mp, state, reg, c, scratch);               // 7.
       WriteState(mp, state, c, scratch);
     }
     PetscFunctionReturn(PETSC_SUCCESS);
@@ -443,8 +444,8 @@ public:
     const bool crack_band  = regularization == Regularization::CrackBand;
     const int  num_history = flow->NumHistory(); // the history entries the flow model uses (the others are never read)
     for (int k = 0; k < c.n; ++k) {
-      const PetscInt   q     = c.index[k];
-      const PetscReal *L     = mp.L + 9 * q, *R_old = state.R + 9 * q;
+      const PetscInt   q = c.index[k];
+      const PetscReal *L = mp.L + 9 * q, *R_old = state.R + 9 * q;
       PetscReal       *R_new = scratch.R_next[k];
       if (!PolarRotationWarm(mp.F + 9 * q, R_old, R_new)) { // warm start: R moves little per step
         Mat3Map R_fallback(R_new);
@@ -518,7 +519,11 @@ public:
     const PetscErrorCode ierr = flow->Return(c, settings);
     if (ierr && c.failed_point >= 0) {
       const int k = c.failed_point;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Material %s, t = %g s, particle index %" PetscInt_FMT ": return mapping failed at plastic strain %.17g, porosity %.17g, trial pressure %.17g Pa, trial q %.17g Pa (rate %g 1/s), T %.17g K, mu %.17g Pa, K %.17g Pa, density %.17g, dt %.17g s\n", Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k], (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k], (double)c.dt));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF,
+                            "Material %s, t = %g s, particle index %" PetscInt_FMT
+                            ": return mapping failed at plastic strain %.17g, porosity %.17g, trial pressure %.17g Pa, trial q %.17g Pa (rate %g 1/s), T %.17g K, mu %.17g Pa, K %.17g Pa, density %.17g, dt %.17g s\n",
+                            Name(), (double)mp.time, c.index[k], (double)c.plastic_strain[k], (double)c.porosity[k], (double)c.pressure[k], (double)std::sqrt(1.5 * Mat3Map(c.deviator[k]).squaredNorm()), (double)c.total_rate[k],
+                            (double)c.temperature[k], (double)c.shear_modulus[k], (double)c.bulk_modulus[k], (double)c.density[k], (double)c.dt));
     }
     PetscCheck(!ierr, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Material %s: the return mapping did not converge (increase -%s_return_tolerance or reduce -mpm_cfl)", Name(), Name());
     if (failure_response != FailureResponse::None)
@@ -583,7 +588,7 @@ public:
         const PetscReal ratio_f = c.porosity[k] / tepla_critical_porosity;
         PetscReal       ratio_e = std::isfinite(c.fracture_strain[k]) && c.fracture_strain[k] > 0 ? c.plastic_strain[k] / c.fracture_strain[k] : 0;
         if (regularization == Regularization::Nonlocal) ratio_e = nonlocal ? reg.strain[q] : c.damage[k]; // eq. 22 with the nonlocal damage D_bar (no average yet: D)
-        else if (tepla_damage) ratio_e = c.damage[k];     // eq. 22 with the accumulated damage D
+        else if (tepla_damage) ratio_e = c.damage[k];                                                     // eq. 22 with the accumulated damage D
         if (ratio_f * ratio_f + ratio_e * ratio_e >= 1) bits |= FailTepla;
       }
       if (c.porosity[k] >= tepla_critical_porosity) bits |= FailPorosity;
@@ -628,10 +633,10 @@ public:
         // the response: drop what the failed point cannot carry; count the elastic energy that goes
         // (q^2/(6 mu) + p^2/(2 K) per unit volume for the dropped parts)
         const PetscReal q_eq = c.equivalent_stress[k], p = c.pressure[k], mu = c.shear_modulus[k], K = c.bulk_modulus[k];
-        PetscReal       dropped = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
+        PetscReal       dropped       = mu > 0 ? q_eq * q_eq / (6 * mu) : 0;
         const bool      keep_pressure = failure_response == FailureResponse::NoShear || (failure_response == FailureResponse::NoTension && p > 0);
         if (!keep_pressure) dropped += K > 0 ? p * p / (2 * K) : 0;
-        if (newly_failed && !crack_band) state.released[q] += dropped * mp.volume[q]; // afterwards nothing is stored to release (crack band: counted below)
+        if (newly_failed && !crack_band) state.released[q] += dropped * mp.volume[q];   // afterwards nothing is stored to release (crack band: counted below)
         for (int a = 0; a < 9; ++a) s_hat[a] = a % 4 || !keep_pressure ? 0.0 : 0.0 - p; // (as zeroing, then subtracting p)
       }
       // crack band: from the criterion to the end of the softening (its last step included) the
@@ -682,7 +687,7 @@ public:
       mp.temperature[q] = c.temperature[k];
       if (state.failed[q] && failure_response != FailureResponse::None) mp.wave_speed[q] = std::sqrt(c.bulk_modulus[k] / (failure_response == FailureResponse::NoShear ? c.density[k] : PetscMax(c.density[k], density_)));
       else mp.wave_speed[q] = std::sqrt((c.bulk_modulus[k] + 4.0 / 3.0 * c.shear_modulus[k]) / c.density[k]);
-      state.eps[q]      = c.plastic_strain[k];
+      state.eps[q] = c.plastic_strain[k];
       state.work[q] += scratch.plastic_work[k] * mp.mass[q];
       if (adiabatic) state.heat[q] += taylor_quinney * scratch.plastic_work[k] * mp.mass[q];
       state.dilatation[q] += c.trace_plastic_strain[k];
@@ -697,7 +702,8 @@ public:
 
   std::vector<OutputField> OutputFields() const override
   {
-    std::vector<OutputField> out = {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false}, {kDamage, 1, false}, {kFlowStress, 1, false}, {kFailed, 1, true}, {kFailureTime, 1, false}, {kUnstable, 1, true}, {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
+    std::vector<OutputField> out = {{kPlasticStrain, 1, false}, {kPlasticStrainRate, 1, false}, {kPorosity, 1, false},      {kDamage, 1, false},      {kFlowStress, 1, false},  {kFailed, 1, true},
+                                    {kFailureTime, 1, false},   {kUnstable, 1, true},           {kFailureEnergy, 1, false}, {kPlasticWork, 1, false}, {kPlasticHeat, 1, false}, {kElasticEnergy, 1, false}};
     if (regularization == Regularization::Nonlocal) out.push_back({kNonlocalStrain, 1, false});
     if (regularization == Regularization::CrackBand) {
       out.push_back({kSoftening, 1, false});
@@ -717,7 +723,8 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override
   {
     PetscFunctionBeginUser;
-    PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: elastic_plastic (hypoelastic-plastic, Green-Naghdi frame)\n  density %g kg/m^3, shear modulus %g Pa, bulk modulus %g Pa, room temperature %g K\n", Name(), (double)density_, (double)constants.shear_modulus, (double)constants.bulk_modulus, (double)constants.room_temperature));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: elastic_plastic (hypoelastic-plastic, Green-Naghdi frame)\n  density %g kg/m^3, shear modulus %g Pa, bulk modulus %g Pa, room temperature %g K\n", Name(), (double)density_,
+                                     (double)constants.shear_modulus, (double)constants.bulk_modulus, (double)constants.room_temperature));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  yield: %s; Taylor-Quinney %g, %s\n", settings.yield == YieldType::VonMises ? "von_mises" : "gtn", (double)taylor_quinney, adiabatic ? "adiabatic" : "isothermal"));
     PetscCall(eos->View(viewer));
     PetscCall(melt->View(viewer));
@@ -729,7 +736,8 @@ public:
     if (regularization == Regularization::Nonlocal) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: nonlocal, length %g m (Delta D and Delta f averaged; TEPLA-F with the nonlocal damage)\n", (double)regularization_length));
     if (regularization == Regularization::CrackBand) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: crack_band, fracture energy %g J/m^2 (linear softening over u_f = 2 G_f / sigma_i after a criterion)\n", (double)fracture_energy));
     if (tepla_damage) PetscCall(PetscViewerASCIIPrintf(viewer, "  TEPLA-F with the accumulated damage D\n"));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off", (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off",
+                                     (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
@@ -739,6 +747,5 @@ PetscErrorCode ElasticPlasticCreate(Material **m)
   *m = new ElasticPlastic();
   return PETSC_SUCCESS;
 }
-
 
 } // namespace burst

@@ -60,9 +60,9 @@ inline bool PolarRotationWarm(const PetscReal *F, const PetscReal *__restrict R0
     if (!(ww < 0.25)) return false; // more than about 0.5 rad from the start: not a warm start
     const PetscReal h0 = 0.5 * w[0], h1 = 0.5 * w[1], h2 = 0.5 * w[2], s = 2 / (1 + 0.25 * ww);
     // Q = I + s (H + H^2), H = [h]; H^2 = h h^T - |h|^2 I, its diagonal -(h_j^2 + h_k^2)
-    const PetscReal Q[9] = {1 + s * -(h2 * h2 + h1 * h1), s * (-h2 + h0 * h1), s * (h1 + h0 * h2), //
-                            s * (h2 + h0 * h1), 1 + s * -(h2 * h2 + h0 * h0), s * (-h0 + h1 * h2),  //
-                            s * (-h1 + h0 * h2), s * (h0 + h1 * h2), 1 + s * -(h1 * h1 + h0 * h0)};
+    const PetscReal Q[9] = {1 + s * -(h2 * h2 + h1 * h1), s * (-h2 + h0 * h1),          s * (h1 + h0 * h2),  //
+                            s * (h2 + h0 * h1),           1 + s * -(h2 * h2 + h0 * h0), s * (-h0 + h1 * h2), //
+                            s * (-h1 + h0 * h2),          s * (h0 + h1 * h2),           1 + s * -(h1 * h1 + h0 * h0)};
     const bool      last = ww < 1e-18; // |w| < 1e-9: the next correction, of order |w|^2, is round-off
     PetscReal      *out  = last ? R : buffer[it % 2];
     for (int i = 0; i < 3; ++i)
@@ -97,10 +97,7 @@ struct SymmetricTensor {
   PetscReal xx, xy, xz, yy, yz, zz;
 };
 
-inline void StoreSymmetric(const SymmetricTensor &t, PetscReal *__restrict out)
-{
-  out[0] = t.xx, out[1] = out[3] = t.xy, out[2] = out[6] = t.xz, out[4] = t.yy, out[5] = out[7] = t.yz, out[8] = t.zz;
-}
+inline void StoreSymmetric(const SymmetricTensor &t, PetscReal *__restrict out) { out[0] = t.xx, out[1] = out[3] = t.xy, out[2] = out[6] = t.xz, out[4] = t.yy, out[5] = out[7] = t.yz, out[8] = t.zz; }
 
 // R^T S R
 inline SymmetricTensor RotatedToFrame(const PetscReal *__restrict R, const PetscReal *__restrict S)

@@ -15,7 +15,7 @@ PetscErrorCode OptionsRequiredReal(PetscOptionItems *PetscOptionsObject, const c
 PetscErrorCode SubModelCreate(MPI_Comm comm, PetscFunctionList list, const MaterialConstants &material, const char family[], const char default_type[], const char help[], SubModel **model, PetscBool fixed_type)
 {
   char        type[256];
-  std::string prefix = material.name + "_" + family + "_";
+  std::string prefix                    = material.name + "_" + family + "_";
   PetscErrorCode (*create)(SubModel **) = nullptr;
   PetscFunctionBeginUser;
   PetscCall(PetscStrncpy(type, default_type, sizeof(type)));

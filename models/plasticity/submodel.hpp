@@ -15,10 +15,10 @@ namespace burst {
 
 // Material constants a sub-model may need from its material (set before SetFromOptions).
 struct MaterialConstants {
-  std::string name;                 // material name (options prefix)
-  PetscReal   density       = 0;    // reference density rho0, kg/m^3
-  PetscReal   shear_modulus = 0;    // reference shear modulus mu0, Pa
-  PetscReal   bulk_modulus  = 0;    // reference bulk modulus K0, Pa
+  std::string name;                   // material name (options prefix)
+  PetscReal   density          = 0;   // reference density rho0, kg/m^3
+  PetscReal   shear_modulus    = 0;   // reference shear modulus mu0, Pa
+  PetscReal   bulk_modulus     = 0;   // reference bulk modulus K0, Pa
   PetscReal   room_temperature = 298; // K
 };
 
@@ -29,8 +29,8 @@ public:
   virtual PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject, const MaterialConstants &material) = 0;
   // Prints every parameter with its unit.
   virtual PetscErrorCode View(PetscViewer viewer) const = 0;
-  std::string type; // registered name
-  std::string prefix; // options prefix MAT_FAMILY_
+  std::string            type;   // registered name
+  std::string            prefix; // options prefix MAT_FAMILY_
 };
 
 // Reads a required real parameter: stops with a message naming the option if it is missing.

@@ -6,7 +6,8 @@ namespace burst {
 class ConstantShear final : public ShearModulusModel {
 public:
   PetscReal mu0 = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) c.shear_modulus[k] = c.temperature[k] < c.melt_temperature[k] ? mu0 : 0;
   }

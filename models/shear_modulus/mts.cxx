@@ -10,7 +10,8 @@ namespace burst {
 class MTSShear final : public ShearModulusModel {
 public:
   PetscReal mu0 = 0, D = 0, T0 = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) {
       const PetscReal T  = c.temperature[k];

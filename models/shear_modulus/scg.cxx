@@ -12,7 +12,8 @@ namespace burst {
 class SCGShear final : public ShearModulusModel {
 public:
   PetscReal mu0 = 0, A = 0, B = 0, rho0 = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) {
       const PetscReal eta = c.density[k] / rho0;

@@ -6,7 +6,8 @@ namespace burst {
 class ConstantSpecificHeat final : public SpecificHeatModel {
 public:
   PetscReal Cp = 0;
-  void      Evaluate(Chunk &c) const override
+
+  void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) c.specific_heat[k] = Cp;
   }

@@ -16,7 +16,7 @@ public:
       const PetscReal T = c.temperature[k];
       if (T >= 270) c.specific_heat[k] = 0.1009 * T + 358.4;
       else {
-        const PetscReal t   = T > 40 ? T : 40;
+        const PetscReal t  = T > 40 ? T : 40;
         c.specific_heat[k] = ((4.16e-5 * t - 0.027) * t + 6.21) * t - 142.6;
       }
     }

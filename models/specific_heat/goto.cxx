@@ -11,7 +11,7 @@ public:
   void Evaluate(Chunk &c) const override
   {
     for (int k = 0; k < c.n; ++k) {
-      const PetscReal T   = c.temperature[k] > 1 ? c.temperature[k] : 1;
+      const PetscReal T  = c.temperature[k] > 1 ? c.temperature[k] : 1;
       c.specific_heat[k] = 1e3 * (0.09278 + 7.454e-4 * T + 12404.0 / (T * T));
     }
   }

@@ -51,8 +51,6 @@ namespace {
 constexpr int kMaxGrid    = 45; // 2 degrees
 constexpr int kMaxNormals = 1 + kMaxGrid * (kMaxGrid + 1);
 
-
-
 // The state of one point in the principal frame (everything divided by mu), as the coefficients of
 // det R in x = n*n (componentwise): R_jj = 1 + h (n.s^.n - s^_j) + c_jj x_j and, for j != k,
 // R_jk = n_j n_k c_jk with c_jk = L - b N_j N_k + h (s^_j - s^_k), L = lambda/mu + 1, b = beta/mu,
@@ -126,7 +124,7 @@ public:
     for (int i = 0; i < nn; ++i)
       if ((value[i] = LocalizationDet(p, &normals_[3 * i])) <= 0) return true;
     const PetscReal step = 0.5 * PETSC_PI / grid, separation = std::cos(1.5 * step);
-    int             chosen[8], n_chosen = 0;
+    int             chosen[8], n_chosen                      = 0;
     while (n_chosen < starts) {
       int best = -1;
       for (int i = 0; i < nn; ++i) {
@@ -156,16 +154,16 @@ public:
     PetscReal n[3] = {n0[0], n0[1], n0[2]};
     for (int it = 0; it < 60 && h >= tolerance; ++it) {
       // tangent basis: t1 = normalized (e x n) with e the axis least aligned with n, t2 = n x t1
-      const int a = (std::fabs(n[0]) <= std::fabs(n[1]) && std::fabs(n[0]) <= std::fabs(n[2])) ? 0 : (std::fabs(n[1]) <= std::fabs(n[2]) ? 1 : 2);
-      PetscReal t1[3] = {0, 0, 0}, t2[3];
-      t1[(a + 1) % 3] = -n[(a + 2) % 3];
-      t1[(a + 2) % 3] = n[(a + 1) % 3];
+      const int a       = (std::fabs(n[0]) <= std::fabs(n[1]) && std::fabs(n[0]) <= std::fabs(n[2])) ? 0 : (std::fabs(n[1]) <= std::fabs(n[2]) ? 1 : 2);
+      PetscReal t1[3]   = {0, 0, 0}, t2[3];
+      t1[(a + 1) % 3]   = -n[(a + 2) % 3];
+      t1[(a + 2) % 3]   = n[(a + 1) % 3];
       const PetscReal l = 1 / std::sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
       for (int i = 0; i < 3; ++i) t1[i] *= l;
-      t2[0] = n[1] * t1[2] - n[2] * t1[1];
-      t2[1] = n[2] * t1[0] - n[0] * t1[2];
-      t2[2] = n[0] * t1[1] - n[1] * t1[0];
-      PetscReal best = f, best_n[3] = {n[0], n[1], n[2]};
+      t2[0]           = n[1] * t1[2] - n[2] * t1[1];
+      t2[1]           = n[2] * t1[0] - n[0] * t1[2];
+      t2[2]           = n[0] * t1[1] - n[1] * t1[0];
+      PetscReal  best = f, best_n[3] = {n[0], n[1], n[2]};
       const auto sample = [&](PetscReal u, PetscReal v) {
         PetscReal m[3], mm = 0;
         for (int i = 0; i < 3; ++i) {
@@ -184,9 +182,9 @@ public:
       const PetscReal fpu = sample(h, 0), fmu = sample(-h, 0), fpv = sample(0, h), fmv = sample(0, -h), fpp = sample(h, h);
       const PetscReal gu = (fpu - fmu) / (2 * h), gv = (fpv - fmv) / (2 * h);
       PetscReal       huu = (fpu - 2 * f + fmu) / (h * h), hvv = (fpv - 2 * f + fmv) / (h * h);
-      const PetscReal huv = (fpp - fpu - fpv + f) / (h * h);
-      const PetscReal lmin = 0.5 * (huu + hvv) - std::sqrt(0.25 * (huu - hvv) * (huu - hvv) + huv * huv);
-      const PetscReal lmax = 0.5 * (huu + hvv) + std::sqrt(0.25 * (huu - hvv) * (huu - hvv) + huv * huv);
+      const PetscReal huv   = (fpp - fpu - fpv + f) / (h * h);
+      const PetscReal lmin  = 0.5 * (huu + hvv) - std::sqrt(0.25 * (huu - hvv) * (huu - hvv) + huv * huv);
+      const PetscReal lmax  = 0.5 * (huu + hvv) + std::sqrt(0.25 * (huu - hvv) * (huu - hvv) + huv * huv);
       const PetscReal floor = 1e-3 * std::fabs(lmax) + 1e-12;
       if (lmin < floor) {
         huu += floor - lmin;
@@ -205,7 +203,7 @@ public:
         for (int i = 0; i < 3; ++i) n[i] = best_n[i];
       }
       if (f <= 0) break;
-      if (!(f < f_prev)) h *= 0.25;                                       // nothing improved
+      if (!(f < f_prev)) h *= 0.25;                                          // nothing improved
       else if (fn == best) h = PetscMax(PetscMin(h, step), 0.5 * tolerance); // Newton step taken
     }
     return f;
@@ -235,7 +233,8 @@ public:
 
   PetscErrorCode View(PetscViewer viewer) const override
   {
-    return PetscViewerASCIIPrintf(viewer, "  stability: acoustic (min over n of det R(n) <= 0; bit 2): grid %d intervals per 90 deg (%d normals), %d refined starts, angular tolerance %g rad, stress terms %s\n", (int)grid, (int)(normals_.size() / 3), (int)starts, (double)tolerance, stress_terms ? "on" : "off");
+    return PetscViewerASCIIPrintf(viewer, "  stability: acoustic (min over n of det R(n) <= 0; bit 2): grid %d intervals per 90 deg (%d normals), %d refined starts, angular tolerance %g rad, stress terms %s\n", (int)grid, (int)(normals_.size() / 3),
+                                  (int)starts, (double)tolerance, stress_terms ? "on" : "off");
   }
 
 private:

@@ -34,7 +34,7 @@ public:
   {
     for (int k = 0; k < c.n; ++k) {
       if (!c.plastic[k]) continue;
-      const PetscReal mu = c.shear_modulus[k], K = c.bulk_modulus[k], H = EffectiveHardening(c, k);
+      const PetscReal  mu = c.shear_modulus[k], K = c.bulk_modulus[k], H = EffectiveHardening(c, k);
       const PetscReal *S = c.deviator[k], *Dh = c.D_hat[k];
       PetscReal        s[9], D[9];
       for (int i = 0; i < 3; ++i)
@@ -69,10 +69,7 @@ public:
     }
   }
   PetscErrorCode SetFromOptions(PetscOptionItems *, const MaterialConstants &) override { return PETSC_SUCCESS; }
-  PetscErrorCode View(PetscViewer viewer) const override
-  {
-    return PetscViewerASCIIPrintf(viewer, "  stability: drucker ((C^ep:D):D <= 0, von Mises tangent with adiabatic thermal softening; bit 1)\n");
-  }
+  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "  stability: drucker ((C^ep:D):D <= 0, von Mises tangent with adiabatic thermal softening; bit 1)\n"); }
 };
 
 PetscErrorCode DruckerCheckCreate(SubModel **model) { return CreateSubModel<DruckerCheck>(model); }

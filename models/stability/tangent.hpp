@@ -21,15 +21,15 @@ inline PetscReal EffectiveHardening(const Chunk &c, int k)
 // the Lode angle).
 inline void PrincipalDeviator(const PetscReal *S, PetscReal ev[3])
 {
-  const PetscReal m   = (S[0] + S[4] + S[8]) / 3;
-  const PetscReal d0  = S[0] - m, d1 = S[4] - m, d2 = S[8] - m;
+  const PetscReal m  = (S[0] + S[4] + S[8]) / 3;
+  const PetscReal d0 = S[0] - m, d1 = S[4] - m, d2 = S[8] - m;
   const PetscReal o01 = 0.5 * (S[1] + S[3]), o02 = 0.5 * (S[2] + S[6]), o12 = 0.5 * (S[5] + S[7]);
-  const PetscReal J2  = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + o01 * o01 + o02 * o02 + o12 * o12;
+  const PetscReal J2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + o01 * o01 + o02 * o02 + o12 * o12;
   if (J2 <= 0) {
     ev[0] = ev[1] = ev[2] = 0;
     return;
   }
-  const PetscReal J3 = d0 * (d1 * d2 - o12 * o12) - o01 * (o01 * d2 - o12 * o02) + o02 * (o01 * o12 - d1 * o02);
+  const PetscReal J3  = d0 * (d1 * d2 - o12 * o12) - o01 * (o01 * d2 - o12 * o02) + o02 * (o01 * o12 - d1 * o02);
   const PetscReal inv = 3 / J2;
   PetscReal       r   = 0.5 * J3 * inv * std::sqrt(inv); // J3/2 (3/J2)^(3/2)
   r                   = r > 1 ? 1 : (r < -1 ? -1 : r);

@@ -72,9 +72,9 @@ inline Crack Evaluate(const Parameters &p, const CrackSpeeds &v, PetscReal SS, P
     const PetscReal a_f = -p.friction_factor * mean_stress * std::sqrt(c);
     K_0m *= std::sqrt(1 + PETSC_PI * a_f * (1 + a_f / p.fracture_toughness) / p.fracture_toughness);
   }
-  out.K_prime           = K_0m * p.threshold_factor; // eq. 28
-  out.excess            = K_I - out.K_prime;
-  const PetscReal v_r   = tension ? v.tension : v.compression;
+  out.K_prime         = K_0m * p.threshold_factor; // eq. 28
+  out.excess          = K_I - out.K_prime;
+  const PetscReal v_r = tension ? v.tension : v.compression;
   if (c <= 0 || v_r <= 0) return out;
   const bool below = K_I < out.K_prime;
   out.rate         = below ? v_r * Power(p, K_I / (out.K_prime * p.growth_factor)) : v_r * (1 - (K_0m / K_I) * (K_0m / K_I)); // eqs. 24, 29
@@ -95,9 +95,9 @@ struct Rates {
 
 inline void EvaluateRates(const Parameters &p, const CrackSpeeds &v, const PetscReal (*S)[kSym], PetscReal c, PetscReal mean_stress, const PetscReal Ddev2G[kSym], Rates &r)
 {
-  const int       n = p.elements;
-  PetscReal       sum[kSym] = {0, 0, 0, 0, 0, 0}, relax[kSym] = {0, 0, 0, 0, 0, 0};
-  PetscReal       viscous = 0;
+  const int n         = p.elements;
+  PetscReal sum[kSym] = {0, 0, 0, 0, 0, 0}, relax[kSym] = {0, 0, 0, 0, 0, 0};
+  PetscReal viscous = 0;
   for (int i = 0; i < n; ++i) {
     const PetscReal lambda = p.relaxation_rates[i];
     for (int k = 0; k < kSym; ++k) sum[k] += S[i][k], relax[k] += lambda * S[i][k];
@@ -113,7 +113,7 @@ inline void EvaluateRates(const Parameters &p, const CrackSpeeds &v, const Petsc
   PetscReal crack_rate_stress[kSym]; // (xdot S + x Sdot) = 2 G times the crack strain rate
   for (int k = 0; k < kSym; ++k) crack_rate_stress[k] = xdot * sum[k] + x * Sdot[k];
   const PetscReal G = p.shear_modulus;
-  PetscReal drive[kSym]; // 2 G D' less the crack term, shared by the elements in proportion G_i/G
+  PetscReal       drive[kSym]; // 2 G D' less the crack term, shared by the elements in proportion G_i/G
   for (int k = 0; k < kSym; ++k) drive[k] = Ddev2G[k] - crack_rate_stress[k];
   for (int i = 0; i < n; ++i) {
     const PetscReal g = p.shear_fraction[i], lambda = p.relaxation_rates[i];
@@ -125,10 +125,7 @@ inline void EvaluateRates(const Parameters &p, const CrackSpeeds &v, const Petsc
 
 } // namespace
 
-PetscReal CrackRate(const Parameters &p, const PetscReal S[kSym], PetscReal mean_stress, PetscReal c, PetscReal deviatoric_rate_norm)
-{
-  return Rate(p, Speeds(p, deviatoric_rate_norm), Contract(S, S), mean_stress, c);
-}
+PetscReal CrackRate(const Parameters &p, const PetscReal S[kSym], PetscReal mean_stress, PetscReal c, PetscReal deviatoric_rate_norm) { return Rate(p, Speeds(p, deviatoric_rate_norm), Contract(S, S), mean_stress, c); }
 
 PetscReal StoredEnergy(const Parameters &p, const PetscReal *S, PetscReal crack_radius)
 {
@@ -146,17 +143,17 @@ PetscReal StoredEnergy(const Parameters &p, const PetscReal *S, PetscReal crack_
 
 void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, PetscReal mean_stress_old, const PetscReal D[kSym], PetscReal dt, PetscReal density, PetscReal temperature, Result *out)
 {
-  const int n      = p.elements;
-  PetscReal (*S)[kSym] = reinterpret_cast<PetscReal (*)[kSym]>(S_flat);
+  const int n             = p.elements;
+  PetscReal(*S)[kSym]     = reinterpret_cast<PetscReal(*)[kSym]>(S_flat);
   const PetscReal trace_D = D[0] + D[1] + D[2];
   // 2 G D', constant over the step
   PetscReal Ddev2G[kSym];
   for (int k = 0; k < kSym; ++k) Ddev2G[k] = 2 * p.shear_modulus * (D[k] - (k < 3 ? trace_D / 3 : 0));
   PetscReal Ddev[kSym];
   for (int k = 0; k < kSym; ++k) Ddev[k] = D[k] - (k < 3 ? trace_D / 3 : 0);
-  const CrackSpeeds speeds = Speeds(p, std::sqrt(Contract(Ddev, Ddev)));
+  const CrackSpeeds speeds    = Speeds(p, std::sqrt(Contract(Ddev, Ddev)));
   const PetscReal   mean_rate = p.bulk_modulus * trace_D;
-  PetscReal         c = *crack_radius;
+  PetscReal         c         = *crack_radius;
 
   // sub-steps only when the step asks for them: relaxation (RK4 accuracy) and crack growth
   PetscReal substeps = 1;
@@ -197,11 +194,11 @@ void Update(const Parameters &p, PetscReal *S_flat, PetscReal *crack_radius, Pet
   // (below K': at most v_r/(1 + m/2) times that part over m + 1; after the rise: about v_r times the
   // time K_I takes to change by K'), as when a step loads a crack from rest far past K'.
   bool            loading = t_switch > 0 && switch_time_scale > 0 && loading_crack;
-  const PetscReal v_max   = std::fmax(speeds.tension, speeds.compression), m = p.crack_exponent;
+  const PetscReal v_max = std::fmax(speeds.tension, speeds.compression), m = p.crack_exponent;
   const PetscReal power_side = t_switch > 0 ? (loading ? t_switch : dt - t_switch) : 0;
-  const PetscReal h_power = v_max * power_side / ((1 + m / 2) * (m + 1)) > 1e-6 * c ? power_side / std::fmin(2 * std::ceil(m), 100.0) : dt;
+  const PetscReal h_power    = v_max * power_side / ((1 + m / 2) * (m + 1)) > 1e-6 * c ? power_side / std::fmin(2 * std::ceil(m), 100.0) : dt;
   if (loading && v_max * switch_time_scale < 1e-6 * c) loading = false, t_switch = -1;
-  PetscReal       viscous = 0, crack = 0, t = 0, h_graded = p.crack_rate_change_per_substep * switch_time_scale;
+  PetscReal viscous = 0, crack = 0, t = 0, h_graded = p.crack_rate_change_per_substep * switch_time_scale;
   int       nsub = 0;
   Rates     k1, k2, k3, k4;
   PetscReal Y[kMaxElements][kSym];

@@ -52,40 +52,41 @@ constexpr int kStateSize   = kMaxElements * kSym;
 enum class CrackHeating { CrackWork, Release };
 
 struct Parameters {
-  int          elements = 5;                  // Maxwell elements in use (1..5)
-  PetscReal    shear_moduli[kMaxElements]     = {}; // G_i, Pa
-  PetscReal    relaxation_rates[kMaxElements] = {}; // 1/tau_i, 1/s (0: no relaxation)
-  PetscReal    bulk_modulus           = 0;      // K, Pa
-  PetscReal    crack_scale            = 1e-3;   // a, m
-  PetscReal    fracture_toughness     = 500;    // K_0, Pa m^(1/2)
-  PetscReal    crack_exponent         = 10;     // m
-  PetscReal    max_crack_speed        = 300;    // v_max, m/s
-  PetscReal    friction               = 0.35;   // mu (crack faces)
-  PetscReal    tension_growth_factor  = 12;     // phi
-  PetscReal    crack_speed_coefficient = 0.0549251088; // A in v_r = A (sqrt(3/2)|D'|)^n, m/s at 1/s
-  PetscReal    crack_speed_exponent   = 0.90564746; // n
-  PetscReal    specific_heat          = 996;    // c_v, J/(kg K)
-  PetscReal    gruneisen              = 0;      // Gamma
-  CrackHeating crack_heating          = CrackHeating::CrackWork;
-  PetscReal    max_relaxation_per_substep  = 0.5;  // sub-step h <= this / (fastest rate: 1/tau_min, d cdot/dc, softening)
-  PetscReal    crack_rate_change_per_substep = 0.25; // crack speed change per sub-step <= this * cdot; first sub-step after K_I rises through K', in units of the time K_I takes to change by K'
-  int          max_substeps           = 1000;
+  int          elements                       = 5;            // Maxwell elements in use (1..5)
+  PetscReal    shear_moduli[kMaxElements]     = {};           // G_i, Pa
+  PetscReal    relaxation_rates[kMaxElements] = {};           // 1/tau_i, 1/s (0: no relaxation)
+  PetscReal    bulk_modulus                   = 0;            // K, Pa
+  PetscReal    crack_scale                    = 1e-3;         // a, m
+  PetscReal    fracture_toughness             = 500;          // K_0, Pa m^(1/2)
+  PetscReal    crack_exponent                 = 10;           // m
+  PetscReal    max_crack_speed                = 300;          // v_max, m/s
+  PetscReal    friction                       = 0.35;         // mu (crack faces)
+  PetscReal    tension_growth_factor          = 12;           // phi
+  PetscReal    crack_speed_coefficient        = 0.0549251088; // A in v_r = A (sqrt(3/2)|D'|)^n, m/s at 1/s
+  PetscReal    crack_speed_exponent           = 0.90564746;   // n
+  PetscReal    specific_heat                  = 996;          // c_v, J/(kg K)
+  PetscReal    gruneisen                      = 0;            // Gamma
+  CrackHeating crack_heating                  = CrackHeating::CrackWork;
+  PetscReal    max_relaxation_per_substep     = 0.5;  // sub-step h <= this / (fastest rate: 1/tau_min, d cdot/dc, softening)
+  PetscReal    crack_rate_change_per_substep  = 0.25; // crack speed change per sub-step <= this * cdot; first sub-step after K_I rises through K', in units of the time K_I takes to change by K'
+  int          max_substeps                   = 1000;
   // derived by Derive()
-  PetscReal shear_modulus      = 0; // G = sum G_i
+  PetscReal shear_modulus       = 0; // G = sum G_i
   PetscReal max_relaxation_rate = 0;
   PetscReal friction_factor = 0, threshold_factor = 0, growth_factor = 0, crack_scale_cubed = 0; // mu', K'/K_0m, K_1/K', a^3
-  PetscReal shear_fraction[kMaxElements] = {}, viscous_weight[kMaxElements] = {}; // G_i/G, 1/(2 G_i tau_i)
-  int       integer_exponent = 0; // m when it is a whole number in [1, 64] (the power by multiplication), else 0
-  void      Derive();
+  PetscReal shear_fraction[kMaxElements] = {}, viscous_weight[kMaxElements] = {};                // G_i/G, 1/(2 G_i tau_i)
+  int       integer_exponent = 0;                                                                // m when it is a whole number in [1, 64] (the power by multiplication), else 0
+
+  void Derive();
 };
 
 // What one update returns (energies per unit current volume).
 struct Result {
-  PetscReal deviator[kSym];     // S = sum S_i at t_{n+1} (co-rotated frame)
-  PetscReal mean_stress;        // sigma_m at t_{n+1}, Pa (tension positive)
+  PetscReal deviator[kSym];      // S = sum S_i at t_{n+1} (co-rotated frame)
+  PetscReal mean_stress;         // sigma_m at t_{n+1}, Pa (tension positive)
   PetscReal viscous_dissipation; // J/m^3 over the step
-  PetscReal crack_dissipation;  // J/m^3 over the step
-  PetscReal temperature_change; // K
+  PetscReal crack_dissipation;   // J/m^3 over the step
+  PetscReal temperature_change;  // K
   int       substeps;
 };
 

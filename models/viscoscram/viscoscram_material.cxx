@@ -20,11 +20,11 @@
 namespace burst {
 
 namespace {
-constexpr const char *kElementStress     = "viscoscram_elements";      // S_1..S_5 in the co-rotated frame, bs 30 (xx yy zz xy yz xz per element), Pa
-constexpr const char *kCrackRadius       = "crack_radius";             // c, m
-constexpr const char *kRotation          = "viscoscram_rotation";      // R of the polar decomposition at t_n, bs 9
-constexpr const char *kViscousDissipation = "viscous_dissipation";     // accumulated viscous dissipation, J
-constexpr const char *kCrackDissipation  = "crack_dissipation";        // accumulated crack dissipation, J
+constexpr const char *kElementStress      = "viscoscram_elements"; // S_1..S_5 in the co-rotated frame, bs 30 (xx yy zz xy yz xz per element), Pa
+constexpr const char *kCrackRadius        = "crack_radius";        // c, m
+constexpr const char *kRotation           = "viscoscram_rotation"; // R of the polar decomposition at t_n, bs 9
+constexpr const char *kViscousDissipation = "viscous_dissipation"; // accumulated viscous dissipation, J
+constexpr const char *kCrackDissipation   = "crack_dissipation";   // accumulated crack dissipation, J
 
 const char *const CrackHeatingNames[] = {"crack_work", "release"};
 
@@ -55,11 +55,14 @@ public:
     PetscCall(PetscOptionsRealArray("-relaxation_rates", "Inverse relaxation times 1/tau_i of the Maxwell elements (1/s), one per shear modulus, each >= 0 (0: purely elastic element)", "", params.relaxation_rates, &n_rates, &set_rates));
     if (!set_G) n = viscoscram::kMaxElements;
     if (!set_rates) n_rates = viscoscram::kMaxElements;
-    PetscCheck(n >= 1 && n == n_rates, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Material '%s': -%sshear_moduli has %" PetscInt_FMT " values and -%srelaxation_rates %" PetscInt_FMT ": give one relaxation rate per element (1 to 5 elements)", Name(), prefix, n, prefix, n_rates);
+    PetscCheck(n >= 1 && n == n_rates, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Material '%s': -%sshear_moduli has %" PetscInt_FMT " values and -%srelaxation_rates %" PetscInt_FMT ": give one relaxation rate per element (1 to 5 elements)", Name(),
+               prefix, n, prefix, n_rates);
     params.elements = (int)n;
     for (int i = 0; i < params.elements; ++i) {
-      PetscCheck(params.shear_moduli[i] > 0 && std::isfinite(params.shear_moduli[i]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%sshear_moduli: value %d = %g is out of range: each must be > 0 (Pa)", prefix, i + 1, (double)params.shear_moduli[i]);
-      PetscCheck(params.relaxation_rates[i] >= 0 && std::isfinite(params.relaxation_rates[i]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%srelaxation_rates: value %d = %g is out of range: each must be >= 0 (1/s)", prefix, i + 1, (double)params.relaxation_rates[i]);
+      PetscCheck(params.shear_moduli[i] > 0 && std::isfinite(params.shear_moduli[i]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%sshear_moduli: value %d = %g is out of range: each must be > 0 (Pa)", prefix, i + 1,
+                 (double)params.shear_moduli[i]);
+      PetscCheck(params.relaxation_rates[i] >= 0 && std::isfinite(params.relaxation_rates[i]), PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%srelaxation_rates: value %d = %g is out of range: each must be >= 0 (1/s)", prefix, i + 1,
+                 (double)params.relaxation_rates[i]);
     }
     PetscCall(PetscOptionsReal("-poisson_ratio", "Poisson's ratio nu (-) giving the bulk modulus K = 2 G (1 + nu)/(3 (1 - 2 nu)), G = sum G_i; in (-1, 0.5)", "", poisson_ratio, &poisson_ratio, nullptr));
     PetscCheck(poisson_ratio > -1 && poisson_ratio < 0.5, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "Option -%spoisson_ratio = %g is out of range: it must be in (-1, 0.5)", prefix, (double)poisson_ratio);
@@ -85,11 +88,16 @@ public:
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "specific_heat").c_str(), params.specific_heat, 0, PETSC_MAX_REAL, PETSC_TRUE));
     PetscCall(PetscOptionsReal("-gruneisen", "Grueneisen coefficient Gamma of the thermoelastic term -Gamma T tr(D) (-), in [0, 10]", "", params.gruneisen, &params.gruneisen, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "gruneisen").c_str(), params.gruneisen, 0, 10, PETSC_FALSE));
-    PetscCall(OptionsChoice(PetscOptionsObject, "-crack_heating", "Crack heating: crack_work = S : d/dt(x S)/(2G) (Hackett & Bennett 2000, the reference code), release = only the energy crack growth releases, xdot S:S/(4G)", CrackHeatingNames, 2, &heating, nullptr));
+    PetscCall(OptionsChoice(PetscOptionsObject, "-crack_heating", "Crack heating: crack_work = S : d/dt(x S)/(2G) (Hackett & Bennett 2000, the reference code), release = only the energy crack growth releases, xdot S:S/(4G)", CrackHeatingNames, 2,
+                            &heating, nullptr));
     params.crack_heating = (viscoscram::CrackHeating)heating;
-    PetscCall(PetscOptionsReal("-max_relaxation_per_substep", "Sub-step so that each sub-step is at most this times the shortest time of the model: the relaxation times tau_i and the crack equations' own rates (-), in (0, 2.5]", "", params.max_relaxation_per_substep, &params.max_relaxation_per_substep, nullptr));
+    PetscCall(PetscOptionsReal("-max_relaxation_per_substep", "Sub-step so that each sub-step is at most this times the shortest time of the model: the relaxation times tau_i and the crack equations' own rates (-), in (0, 2.5]", "",
+                               params.max_relaxation_per_substep, &params.max_relaxation_per_substep, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "max_relaxation_per_substep").c_str(), params.max_relaxation_per_substep, 0, 2.5, PETSC_TRUE));
-    PetscCall(PetscOptionsReal("-crack_rate_change_per_substep", "Sub-step so that the crack speed changes by at most this fraction of itself per sub-step; also the first sub-step after K_I rises through K' (where the growth law switches branch), as a fraction of the time K_I takes to change by K' (-), in (0, 1]", "", params.crack_rate_change_per_substep, &params.crack_rate_change_per_substep, nullptr));
+    PetscCall(PetscOptionsReal("-crack_rate_change_per_substep",
+                               "Sub-step so that the crack speed changes by at most this fraction of itself per sub-step; also the first sub-step after K_I rises through K' (where the growth law switches branch), as a fraction of the time K_I takes "
+                               "to change by K' (-), in (0, 1]",
+                               "", params.crack_rate_change_per_substep, &params.crack_rate_change_per_substep, nullptr));
     PetscCall(CheckRange(PETSC_COMM_WORLD, Prefixed(prefix, "crack_rate_change_per_substep").c_str(), params.crack_rate_change_per_substep, 0, 1, PETSC_TRUE));
     PetscInt max_substeps = params.max_substeps;
     PetscCall(PetscOptionsInt("-max_substeps", "Most sub-steps of one stress update (-), >= 1", "", max_substeps, &max_substeps, nullptr));
@@ -101,10 +109,7 @@ public:
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 
-  std::vector<StateField> StateFields() const override
-  {
-    return {{kElementStress, viscoscram::kStateSize, false}, {kRotation, 9, false}, {kCrackRadius, 1, false}, {kViscousDissipation, 1, false}, {kCrackDissipation, 1, false}};
-  }
+  std::vector<StateField> StateFields() const override { return {{kElementStress, viscoscram::kStateSize, false}, {kRotation, 9, false}, {kCrackRadius, 1, false}, {kViscousDissipation, 1, false}, {kCrackDissipation, 1, false}}; }
 
   PetscErrorCode InitializeState(const MaterialPointFields &mp, PetscInt begin, PetscInt end) override
   {
@@ -142,7 +147,7 @@ public:
     PetscInt        points = 0, substeps = 0, most_substeps = 0; // for -info
     for (PetscInt q = 0; q < mp.n; ++q) {
       if (mp.material[q] != id) continue;
-      const PetscReal *L = mp.L + 9 * q;
+      const PetscReal *L     = mp.L + 9 * q;
       PetscReal       *R_old = R + 9 * q, R_new[9];
       if (!PolarRotationWarm(mp.F + 9 * q, R_old, R_new)) { // warm start: R moves little per step
         Mat3Map R_fallback(R_new);
@@ -152,12 +157,12 @@ public:
       const PetscReal       D_lab[9] = {L[0], 0.5 * (L[1] + L[3]), 0.5 * (L[2] + L[6]), 0.5 * (L[3] + L[1]), L[4], 0.5 * (L[5] + L[7]), 0.5 * (L[6] + L[2]), 0.5 * (L[7] + L[5]), L[8]};
       const SymmetricTensor d_old = RotatedToFrame(R_old, D_lab), d_new = RotatedToFrame(R_new, D_lab);
       const PetscReal       D_hat[6] = {0.5 * (d_old.xx + d_new.xx), 0.5 * (d_old.yy + d_new.yy), 0.5 * (d_old.zz + d_new.zz), 0.5 * (d_old.xy + d_new.xy), 0.5 * (d_old.yz + d_new.yz), 0.5 * (d_old.xz + d_new.xz)};
-      PetscReal            *sigma = mp.stress + 9 * q;
-      const PetscReal       density = mp.mass[q] / mp.volume[q];
+      PetscReal            *sigma    = mp.stress + 9 * q;
+      const PetscReal       density  = mp.mass[q] / mp.volume[q];
       viscoscram::Result    r;
       viscoscram::Update(params, S + viscoscram::kStateSize * q, c + q, (sigma[0] + sigma[4] + sigma[8]) / 3, D_hat, dt, density, mp.temperature[q], &r);
       // sigma_{n+1} = R_new (S + sigma_m I) R_new^T
-      const PetscReal *s = r.deviator;
+      const PetscReal *s        = r.deviator;
       const PetscReal  frame[9] = {s[0] + r.mean_stress, s[3], s[5], s[3], s[1] + r.mean_stress, s[4], s[5], s[4], s[2] + r.mean_stress};
       PetscReal        sigma_old[9];
       for (int a = 0; a < 9; ++a) sigma_old[a] = sigma[a];
@@ -189,10 +194,14 @@ public:
   PetscErrorCode View(PetscViewer viewer) const override
   {
     PetscFunctionBeginUser;
-    PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: viscoscram (%d Maxwell elements + statistical crack, Green-Naghdi frame)\n  density %g kg/m^3, G = sum G_i %g Pa, bulk modulus %g Pa (nu %g)\n", Name(), params.elements, (double)density_, (double)params.shear_modulus, (double)params.bulk_modulus, (double)poisson_ratio));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "Material %s: viscoscram (%d Maxwell elements + statistical crack, Green-Naghdi frame)\n  density %g kg/m^3, G = sum G_i %g Pa, bulk modulus %g Pa (nu %g)\n", Name(), params.elements, (double)density_,
+                                     (double)params.shear_modulus, (double)params.bulk_modulus, (double)poisson_ratio));
     for (int i = 0; i < params.elements; ++i) PetscCall(PetscViewerASCIIPrintf(viewer, "  element %d: G %g Pa, 1/tau %g 1/s\n", i + 1, (double)params.shear_moduli[i], (double)params.relaxation_rates[i]));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  crack: a %g m, c_0 %g m, K_0 %g Pa m^1/2, m %g, v_max %g m/s, friction %g, tension factor %g, speed %g (sqrt(3/2)|D'|)^%g m/s\n", (double)params.crack_scale, (double)initial_crack_radius, (double)params.fracture_toughness, (double)params.crack_exponent, (double)params.max_crack_speed, (double)params.friction, (double)params.tension_growth_factor, (double)params.crack_speed_coefficient, (double)params.crack_speed_exponent));
-    PetscCall(PetscViewerASCIIPrintf(viewer, "  heating: c_v %g J/(kg K), Gamma %g, crack heating %s; sub-steps of at most %g times the shortest time (relaxation, crack), crack speed change %g per sub-step (at most %d)\n", (double)params.specific_heat, (double)params.gruneisen, CrackHeatingNames[(int)params.crack_heating], (double)params.max_relaxation_per_substep, (double)params.crack_rate_change_per_substep, params.max_substeps));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  crack: a %g m, c_0 %g m, K_0 %g Pa m^1/2, m %g, v_max %g m/s, friction %g, tension factor %g, speed %g (sqrt(3/2)|D'|)^%g m/s\n", (double)params.crack_scale, (double)initial_crack_radius,
+                                     (double)params.fracture_toughness, (double)params.crack_exponent, (double)params.max_crack_speed, (double)params.friction, (double)params.tension_growth_factor, (double)params.crack_speed_coefficient,
+                                     (double)params.crack_speed_exponent));
+    PetscCall(PetscViewerASCIIPrintf(viewer, "  heating: c_v %g J/(kg K), Gamma %g, crack heating %s; sub-steps of at most %g times the shortest time (relaxation, crack), crack speed change %g per sub-step (at most %d)\n",
+                                     (double)params.specific_heat, (double)params.gruneisen, CrackHeatingNames[(int)params.crack_heating], (double)params.max_relaxation_per_substep, (double)params.crack_rate_change_per_substep, params.max_substeps));
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };

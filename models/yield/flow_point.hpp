@@ -27,9 +27,9 @@ struct FlowPoint {
 };
 
 struct FlowValue {
-  PetscReal sigma   = 0; // flow stress, Pa
-  PetscReal d_strain = 0; // d sigma / d eps_p, Pa
-  PetscReal d_rate  = 0; // d sigma / d eps_p_dot, Pa s
+  PetscReal sigma         = 0; // flow stress, Pa
+  PetscReal d_strain      = 0; // d sigma / d eps_p, Pa
+  PetscReal d_rate        = 0; // d sigma / d eps_p_dot, Pa s
   PetscReal d_temperature = 0; // d sigma / dT, Pa/K
 };
 

@@ -75,16 +75,16 @@ namespace burst {
 struct GTNParameters {
   PetscReal q1 = 1.5, q2 = 1.0, q3 = 2.25;
   PetscReal critical_porosity = 0.05; // f_c of eq. 14 (acceleration threshold)
-  PetscReal acceleration = 4.0;       // k of eq. 14
-  bool      growth = true;            // porosity grows by (1 - f_n) tr(Delta eps_p) in the material: use f_{n+1} in the return
+  PetscReal acceleration      = 4.0;  // k of eq. 14
+  bool      growth            = true; // porosity grows by (1 - f_n) tr(Delta eps_p) in the material: use f_{n+1} in the return
 };
 
 namespace gtn {
 
-constexpr PetscReal kCoshClip       = 30;   // |x| beyond which cosh is continued linearly
-constexpr PetscReal kSurfaceCap     = 0.99; // f* <= kSurfaceCap f*_u
-constexpr PetscReal kHydrostatic    = 1e-12; // q_tr <= kHydrostatic sigma_f: pure hydrostatic return
-constexpr PetscReal kMaxPorosity    = 1 - 1e-9;
+constexpr PetscReal kCoshClip    = 30;    // |x| beyond which cosh is continued linearly
+constexpr PetscReal kSurfaceCap  = 0.99;  // f* <= kSurfaceCap f*_u
+constexpr PetscReal kHydrostatic = 1e-12; // q_tr <= kHydrostatic sigma_f: pure hydrostatic return
+constexpr PetscReal kMaxPorosity = 1 - 1e-9;
 
 // cosh and its derivatives, continued linearly beyond |x| = kCoshClip: C(x), S = C', dS = C''.
 inline void ClippedCosh(PetscReal x, PetscReal &C, PetscReal &S, PetscReal &dS)
@@ -101,8 +101,8 @@ inline void ClippedCosh(PetscReal x, PetscReal &C, PetscReal &S, PetscReal &dS)
       sh                = 0.5 * e - 0.5 / e;
     } else {
       const PetscReal t = std::expm1(ax), w = t + 1;
-      C                 = 1 + t * t / (w + w);
-      sh                = 0.5 * (2 * t - t * t / w);
+      C  = 1 + t * t / (w + w);
+      sh = 0.5 * (2 * t - t * t / w);
     }
     S  = std::copysign(sh, x);
     dS = C;
@@ -151,7 +151,7 @@ struct State {
   PetscReal dv = 0, dq = 0;
   PetscReal sigma_m = 0, q = 0, f = 0, fs = 0, de = 0;
   FlowValue y;
-  PetscReal H = 0;              // d sigma_f / d de (strain plus rate term above the floor)
+  PetscReal H    = 0;           // d sigma_f / d de (strain plus rate term above the floor)
   PetscReal de_v = 0, de_q = 0; // d de / d dv, d de / d dq (implicit function theorem): predict de at the next iterate
   PetscReal Phi = 0, R2 = 0, R2_scale = 0;
   PetscReal J[2][2] = {{0, 0}, {0, 0}}; // d(Phi, R2)/d(dv, dq)
@@ -159,8 +159,8 @@ struct State {
 
 // Constants of one point's return.
 struct Point {
-  PetscReal sigma_m_tr, q_tr, K, mu, f_n, growth; // growth 1: f = f_n + (1 - f_n) dv; 0: f = f_n
-  const FlowValue *y0 = nullptr;                  // the flow model at de = 0 (the yield test's), reused
+  PetscReal        sigma_m_tr, q_tr, K, mu, f_n, growth; // growth 1: f = f_n + (1 - f_n) dv; 0: f = f_n
+  const FlowValue *y0 = nullptr;                         // the flow model at de = 0 (the yield test's), reused
 };
 
 // Solves (1 - f) sigma_f(eps0 + de, de/dt) de = W for de >= 0 (inner scalar Newton, bracketed),
@@ -186,8 +186,8 @@ inline bool MatrixStrain(const Flow &flow, const Chunk &c, int k, PetscReal one_
   PetscReal lo = 0, hi = PETSC_MAX_REAL;
   for (PetscInt it = 0; it < 4 * max_it; ++it) {
     flow.Evaluate(MakeFlowPoint(flow, c, k, de), y);
-    H                   = rate_slope(de, y);
-    const PetscReal h   = one_minus_f * y.sigma * de - W;
+    H                 = rate_slope(de, y);
+    const PetscReal h = one_minus_f * y.sigma * de - W;
     if (std::fabs(h) <= tol * W) return true;
     if (h < 0) lo = de;
     else hi = de;
@@ -204,42 +204,42 @@ inline bool MatrixStrain(const Flow &flow, const Chunk &c, int k, PetscReal one_
 template <class Flow>
 inline bool Evaluate(const Flow &flow, const Chunk &c, int k, const GTNParameters &g, const Point &P, PetscReal inner_tol, PetscInt max_it, State &s)
 {
-  s.sigma_m         = P.sigma_m_tr - P.K * s.dv;
-  s.q               = P.q_tr - 3 * P.mu * s.dq;
-  const PetscReal fr = P.f_n + P.growth * (1 - P.f_n) * s.dv;
+  s.sigma_m           = P.sigma_m_tr - P.K * s.dv;
+  s.q                 = P.q_tr - 3 * P.mu * s.dq;
+  const PetscReal fr  = P.f_n + P.growth * (1 - P.f_n) * s.dv;
   PetscReal       f_v = P.growth * (1 - P.f_n);
-  s.f               = fr;
+  s.f                 = fr;
   if (fr < 0) s.f = 0, f_v = 0;
   if (fr > kMaxPorosity) s.f = kMaxPorosity, f_v = 0;
   PetscReal dfs;
-  s.fs                = EffectivePorosity(g, s.f, &dfs);
+  s.fs                 = EffectivePorosity(g, s.f, &dfs);
   const PetscReal fs_v = dfs * f_v;
-  const PetscReal omf = 1 - s.f;
-  const PetscReal W   = s.sigma_m * s.dv + s.q * s.dq;
+  const PetscReal omf  = 1 - s.f;
+  const PetscReal W    = s.sigma_m * s.dv + s.q * s.dq;
   const PetscReal W_v = s.sigma_m - P.K * s.dv, W_q = s.q - 3 * P.mu * s.dq;
   if (!MatrixStrain(flow, c, k, omf, W, inner_tol, max_it, P.y0, s.de, s.y, s.H)) return false;
   const PetscReal sf = s.y.sigma;
   if (!(sf > 0)) return false;
   const PetscReal den  = omf * (sf + s.de * s.H);
   const PetscReal de_v = (W_v + f_v * sf * s.de) / den, de_q = W_q / den;
-  s.de_v = de_v;
-  s.de_q = de_q;
+  s.de_v               = de_v;
+  s.de_q               = de_q;
   const PetscReal sf_v = s.H * de_v, sf_q = s.H * de_q;
-  const PetscReal x    = 1.5 * g.q2 * s.sigma_m / sf;
+  const PetscReal x = 1.5 * g.q2 * s.sigma_m / sf;
   PetscReal       C, S, dS;
   ClippedCosh(x, C, S, dS);
   const PetscReal x_v = (-1.5 * g.q2 * P.K - x * sf_v) / sf, x_q = -x * sf_q / sf;
   const PetscReal q2sf = s.q * s.q / (sf * sf);
-  s.Phi               = q2sf + 2 * g.q1 * s.fs * C - (1 + g.q3 * s.fs * s.fs);
-  s.J[0][0]           = -2 * q2sf / sf * sf_v + 2 * g.q1 * (fs_v * C + s.fs * S * x_v) - 2 * g.q3 * s.fs * fs_v;
-  s.J[0][1]           = -6 * P.mu * s.q / (sf * sf) - 2 * q2sf / sf * sf_q + 2 * g.q1 * s.fs * S * x_q;
+  s.Phi                = q2sf + 2 * g.q1 * s.fs * C - (1 + g.q3 * s.fs * s.fs);
+  s.J[0][0]            = -2 * q2sf / sf * sf_v + 2 * g.q1 * (fs_v * C + s.fs * S * x_v) - 2 * g.q3 * s.fs * fs_v;
+  s.J[0][1]            = -6 * P.mu * s.q / (sf * sf) - 2 * q2sf / sf * sf_q + 2 * g.q1 * s.fs * S * x_q;
   const PetscReal A = s.q / sf, A_v = -s.q * sf_v / (sf * sf), A_q = -3 * P.mu / sf - s.q * sf_q / (sf * sf);
   const PetscReal b = 1.5 * g.q1 * g.q2;
   const PetscReal B = b * s.fs * S, B_v = b * (fs_v * S + s.fs * dS * x_v), B_q = b * s.fs * dS * x_q;
-  s.R2              = s.dv * A - s.dq * B;
-  s.R2_scale        = std::fabs(s.dv * A) + std::fabs(s.dq * B);
-  s.J[1][0]         = A + s.dv * A_v - s.dq * B_v;
-  s.J[1][1]         = s.dv * A_q - B - s.dq * B_q;
+  s.R2       = s.dv * A - s.dq * B;
+  s.R2_scale = std::fabs(s.dv * A) + std::fabs(s.dq * B);
+  s.J[1][0]  = A + s.dv * A_v - s.dq * B_v;
+  s.J[1][1]  = s.dv * A_q - B - s.dq * B_q;
   return std::isfinite(s.Phi) && std::isfinite(s.R2);
 }
 
@@ -254,18 +254,19 @@ inline bool Solve(const Flow &flow, const Chunk &c, int k, const GTNParameters &
   PetscReal       dv_lo = PetscMin(0.0, dv_bound), dv_hi = PetscMax(0.0, dv_bound);
   if (P.growth > 0) dv_lo = PetscMax(dv_lo, -P.f_n / (1 - P.f_n)); // void closure stops at f = 0
   const PetscReal scale = std::fabs(dv_bound) + dq_bound;          // strain scale of R2 in the merit
-  auto            merit = [&](const State &x) {
+
+  auto merit = [&](const State &x) {
     const PetscReal r2 = hydrostatic ? 0 : x.R2 / scale;
     return x.Phi * x.Phi + r2 * r2;
   };
   auto converged = [&](const State &x) { return std::fabs(x.Phi) <= tol && (hydrostatic || std::fabs(x.R2) <= tol * x.R2_scale); };
-  st = State();
+  st             = State();
   if (!Evaluate(flow, c, k, g, P, inner_tol, max_it, st)) return false;
   if (hydrostatic) {
     // bracket [a, b] in dv: Phi(a) > 0 (a = 0 is the trial state), Phi(b) <= 0
-    State far = st;
-    far.dv    = dv_bound > 0 ? dv_hi : dv_lo;
-    PetscReal a = 0, b = far.dv;
+    State far    = st;
+    far.dv       = dv_bound > 0 ? dv_hi : dv_lo;
+    PetscReal  a = 0, b = far.dv;
     const bool bracket = Evaluate(flow, c, k, g, P, inner_tol, max_it, far) && far.Phi <= 0;
     for (PetscInt it = 0; it < 4 * max_it; ++it) {
       if (converged(st)) return true;
@@ -328,7 +329,7 @@ struct CoupledState {
   PetscReal dv = 0, dq = 0, de = 0;
   PetscReal sigma_m = 0, q = 0;
   FlowValue y;
-  PetscReal H = 0; // d sigma_f / d de (strain plus rate term above the floor)
+  PetscReal H   = 0; // d sigma_f / d de (strain plus rate term above the floor)
   PetscReal Phi = 0, R2 = 0, R2_scale = 0, R3 = 0, W = 0;
   PetscReal J[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}; // d(Phi, R2, R3)/d(dv, dq, de)
 };
@@ -346,7 +347,7 @@ inline bool EvaluateCoupled(const Flow &flow, const Chunk &c, int k, const GTNPa
   if (fr > kMaxPorosity) f = kMaxPorosity, f_v = 0;
   PetscReal       dfs;
   const PetscReal fs = EffectivePorosity(g, f, &dfs), fs_v = dfs * f_v, omf = 1 - f;
-  s.W                = s.sigma_m * s.dv + s.q * s.dq;
+  s.W = s.sigma_m * s.dv + s.q * s.dq;
   if (s.de == 0 && P.y0) s.y = *P.y0; // the same point and state: the same values
   else flow.Evaluate(MakeFlowPoint(flow, c, k, s.de), s.y);
   s.H                = s.y.d_strain + s.y.d_rate / c.dt;
@@ -364,15 +365,15 @@ inline bool EvaluateCoupled(const Flow &flow, const Chunk &c, int k, const GTNPa
   const PetscReal A = s.q / sf, A_q = -3 * P.mu / sf, A_e = -A * s.H / sf; // A_v = 0
   const PetscReal b = 1.5 * g.q1 * g.q2;
   const PetscReal B = b * fs * S, B_v = b * (fs_v * S + fs * dS * x_v), B_e = b * fs * dS * x_e; // B_q = 0
-  s.R2              = s.dv * A - s.dq * B;
-  s.R2_scale        = std::fabs(s.dv * A) + std::fabs(s.dq * B);
-  s.J[1][0]         = A - s.dq * B_v;
-  s.J[1][1]         = s.dv * A_q - B;
-  s.J[1][2]         = s.dv * A_e - s.dq * B_e;
-  s.R3              = omf * sf * s.de - s.W;
-  s.J[2][0]         = -f_v * sf * s.de - (s.sigma_m - P.K * s.dv);
-  s.J[2][1]         = -(s.q - 3 * P.mu * s.dq);
-  s.J[2][2]         = omf * (sf + s.de * s.H);
+  s.R2       = s.dv * A - s.dq * B;
+  s.R2_scale = std::fabs(s.dv * A) + std::fabs(s.dq * B);
+  s.J[1][0]  = A - s.dq * B_v;
+  s.J[1][1]  = s.dv * A_q - B;
+  s.J[1][2]  = s.dv * A_e - s.dq * B_e;
+  s.R3       = omf * sf * s.de - s.W;
+  s.J[2][0]  = -f_v * sf * s.de - (s.sigma_m - P.K * s.dv);
+  s.J[2][1]  = -(s.q - 3 * P.mu * s.dq);
+  s.J[2][2]  = omf * (sf + s.de * s.H);
   return std::isfinite(s.Phi) && std::isfinite(s.R2) && std::isfinite(s.R3);
 }
 
@@ -413,7 +414,8 @@ inline bool SolveCoupled(const Flow &flow, const Chunk &c, int k, const GTNParam
   PetscReal       dv_lo = PetscMin(0.0, dv_bound), dv_hi = PetscMax(0.0, dv_bound);
   if (P.growth > 0) dv_lo = PetscMax(dv_lo, -P.f_n / (1 - P.f_n)); // void closure stops at f = 0
   const PetscReal scale = std::fabs(dv_bound) + dq_bound;          // strain scale of R2 and R3 in the merit
-  auto            merit = [&](const CoupledState &x) {
+
+  auto merit = [&](const CoupledState &x) {
     const PetscReal r2 = x.R2 / scale, r3 = x.R3 / (x.y.sigma * scale);
     return x.Phi * x.Phi + r2 * r2 + r3 * r3;
   };
@@ -425,7 +427,8 @@ inline bool SolveCoupled(const Flow &flow, const Chunk &c, int k, const GTNParam
   // iterate); the result is copied to st at most once
   CoupledState  spare;
   CoupledState *cur = &st, *next = &spare;
-  auto          finish = [&](bool ok) {
+
+  auto finish = [&](bool ok) {
     if (cur != &st) st = *cur;
     return ok;
   };
@@ -537,11 +540,11 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
     const PetscReal eps0 = c.plastic_strain[k], f_n = PetscMin(PetscMax(c.porosity[k], 0.0), gtn::kMaxPorosity);
     FlowValue       y;
     flow.Evaluate(MakeFlowPoint(flow, c, k, 0.0), y);
-    c.plastic[k]              = 0;
-    c.delta_plastic_strain[k] = 0;
-    c.trace_plastic_strain[k] = 0;
-    const PetscReal fs_n       = gtn::EffectivePorosity(gtn, f_n, nullptr);
-    const PetscReal sigma_m_tr = -c.pressure[k];
+    c.plastic[k]                = 0;
+    c.delta_plastic_strain[k]   = 0;
+    c.trace_plastic_strain[k]   = 0;
+    const PetscReal fs_n        = gtn::EffectivePorosity(gtn, f_n, nullptr);
+    const PetscReal sigma_m_tr  = -c.pressure[k];
     const bool      no_strength = !(y.sigma > 0) || !(mu > 0) || !(K > 0);
     if (no_strength || gtn::YieldFunction(gtn, sigma_m_tr, q_trial, y.sigma, fs_n) <= 0) {
       // elastic (or no strength left: the failure check reads sigma_f <= 0)
@@ -555,7 +558,7 @@ PetscErrorCode GTNReturn(const Flow &flow, Chunk &c, const GTNParameters &gtn, P
     }
     const bool hydrostatic = q_trial <= gtn::kHydrostatic * y.sigma;
     gtn::Point P{sigma_m_tr, q_trial, K, mu, f_n, gtn.growth ? 1.0 : 0.0, &y};
-    bool ok = false;
+    bool       ok = false;
     if (!hydrostatic) { // the one-level Newton from the warm start, else from the trial state
       ok = gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, true, cs) || gtn::SolveCoupled(flow, c, k, gtn, P, tol, max_it, false, cs);
       if (ok) st.dv = cs.dv, st.dq = cs.dq, st.de = cs.de, st.sigma_m = cs.sigma_m, st.q = cs.q, st.y = cs.y, st.H = cs.H;

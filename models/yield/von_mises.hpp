@@ -46,8 +46,8 @@ template <class Flow>
 struct RadialReturn {
   typename LaneOf<Flow>::type lane;
   FlowValue                   y;
-  int                         k = 0;
-  PetscInt                    it = 0;
+  int                         k       = 0;
+  PetscInt                    it      = 0;
   PetscReal                   q_trial = 0, mu = 0, eps0 = 0, de = 0, g = 0, lo = 0, hi = 0, guess = 0;
 
   // The yield test of point k: an elastic point (or one with no strength left: the failure check

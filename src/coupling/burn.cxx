@@ -44,7 +44,7 @@ static inline void AddConversion(IceSolver &ice, PetscInt idx, PetscInt m, Petsc
 
 PetscErrorCode CouplingBurnSetUp(Coupling &c)
 {
-  MpmSolver &mpm   = *c.mpm;
+  MpmSolver &mpm = *c.mpm;
   IceSolver &ice = *c.ice;
   PetscFunctionBeginUser;
   c.burn.resize(c.nsolid);
@@ -71,14 +71,15 @@ PetscErrorCode CouplingBurnSetUp(Coupling &c)
       names += (g ? ", " : "") + ice.materials[g].name;
       if (ice.materials[g].name == product) c.product[s] = g;
     }
-    PetscCheck(c.product[s] >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Material %s burns (-%sburn_type %s): -%sburn_product must name its product gas; valid choices (-ice_materials): %s", mat.Name(), pre.c_str(), model->name_.c_str(), pre.c_str(), names.c_str());
+    PetscCheck(c.product[s] >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Material %s burns (-%sburn_type %s): -%sburn_product must name its product gas; valid choices (-ice_materials): %s", mat.Name(), pre.c_str(), model->name_.c_str(), pre.c_str(),
+               names.c_str());
     any = true;
   }
   if (any) {
     // the seeded particle masses (burnt-out threshold)
-    PetscInt         n;
-    const PetscReal *mass;
-    const PetscInt  *material;
+    PetscInt               n;
+    const PetscReal       *mass;
+    const PetscInt        *material;
     std::vector<PetscReal> local(c.nsolid, 0);
     PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     SwarmAccess fields(mpm.swarm);
@@ -108,9 +109,9 @@ PetscErrorCode CouplingIgnition(Coupling &c, PetscInt material, std::string *mod
 {
   PetscFunctionBeginUser;
   const MpmSolver &mpm = *c.mpm;
-  const PetscInt  s = c.solid_of[material];
-  *model            = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
-  *temperature      = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
+  const PetscInt   s   = c.solid_of[material];
+  *model               = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
+  *temperature         = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -125,9 +126,9 @@ PetscErrorCode CouplingSummary(Coupling &c, PetscReal *burnt_mass, PetscInt64 *b
 
 PetscErrorCode CouplingBurnHelp(Coupling &c)
 {
-  const MpmSolver &mpm = *c.mpm;
-  PetscReal burnout = 1e-3, volume_ratio = 0.5;
-  char      product[256] = "";
+  const MpmSolver &mpm     = *c.mpm;
+  PetscReal        burnout = 1e-3, volume_ratio = 0.5;
+  char             product[256] = "";
   PetscFunctionBeginUser;
   PetscCall(BurnoutOptions(mpm.comm, &burnout, &volume_ratio));
   for (const auto &mat : mpm.materials) {
@@ -154,7 +155,7 @@ static PetscReal GasRoom(const IceSolver &ice, const PetscScalar *a, PetscInt id
 // of the reactant's nodal mass (the burning surface's normal is -grad).
 static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *nodes, PetscInt i, PetscInt j, PetscInt k, PetscInt s, BurnInput *in, PetscReal grad[3])
 {
-  MpmSolver           &mpm   = *c.mpm;
+  MpmSolver           &mpm = *c.mpm;
   IceSolver           &ice = *c.ice;
   const LocalNodeIndex index(mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, n = ice.nmat;
@@ -172,9 +173,9 @@ static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *
   PetscReal Mmax = 0, Mmin = PETSC_MAX_REAL;
   grad[0] = grad[1] = grad[2] = 0;
   ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
-    const PetscReal mn = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride] * w * (dim == 3 ? 8 : 4);
-    Mmax               = PetscMax(Mmax, mn);
-    Mmin               = PetscMin(Mmin, mn);
+    const PetscReal mn      = nodes[index(node[0], node[1], node[2]) * c.mass_stride + s * stride] * w * (dim == 3 ? 8 : 4);
+    Mmax                    = PetscMax(Mmax, mn);
+    Mmin                    = PetscMin(Mmin, mn);
     const PetscInt local[3] = {node[0] - i, node[1] - j, node[2] - k};
     for (PetscInt d = 0; d < dim; ++d) grad[d] += (local[d] ? 1.0 : -1.0) * mn / (ice.h[d] * (dim == 3 ? 4 : 2));
   });
@@ -196,14 +197,14 @@ static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *
 
 PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal where[3], PetscReal *T_hot)
 {
-  MpmSolver         &mpm   = *c.mpm;
+  MpmSolver         &mpm = *c.mpm;
   IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *a;
   PetscInt64         local = 0;
   struct {
     PetscReal   value;
     PetscMPIInt rank;
-  } hottest = {-1, mpm.rank}, global;
+  } hottest       = {-1, mpm.rank}, global;
   PetscReal at[3] = {0, 0, 0};
   PetscFunctionBeginUser;
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
@@ -221,7 +222,7 @@ PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal w
           if (ignites) local += 1;
           // the closest to igniting: the hottest reactant-bearing cell that the criterion sees
           if (in.mass_contrast > 0 && in.T_hot > hottest.value) {
-            hottest.value = in.T_hot;
+            hottest.value         = in.T_hot;
             const PetscInt ijk[3] = {i, j, k};
             for (PetscInt d = 0; d < ice.dim; ++d) at[d] = ice.lower[d] + (ijk[d] + 0.5) * ice.h[d];
           }
@@ -239,7 +240,7 @@ PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal w
 
 PetscErrorCode CouplingBurn(Coupling &c)
 {
-  MpmSolver         &mpm   = *c.mpm;
+  MpmSolver         &mpm = *c.mpm;
   IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
@@ -250,8 +251,8 @@ PetscErrorCode CouplingBurn(Coupling &c)
   std::fill(ice.momentum_source.begin(), ice.momentum_source.end(), 0);
   std::fill(ice.energy_source.begin(), ice.energy_source.end(), 0);
   std::fill(c.burnt_fraction.begin(), c.burnt_fraction.end(), 0);
-  const PetscInt       dim = ice.dim, n = ice.nmat;
-  const PetscReal      V   = ice.CellVolume();
+  const PetscInt  dim = ice.dim, n = ice.nmat;
+  const PetscReal V = ice.CellVolume();
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
   PetscCall(VecGetArrayRead(ice.local, &a));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -261,12 +262,12 @@ PetscErrorCode CouplingBurn(Coupling &c)
         const PetscScalar *cell = a + idx * ice.stride;
         for (PetscInt s = 0; s < c.nsolid; ++s) {
           if (!c.burn[s] || c.product[s] < 0) continue;
-          const PetscInt  m = c.first + s, g = c.product[s];
-          BurnInput in;
-          PetscReal grad[3];
+          const PetscInt m = c.first + s, g = c.product[s];
+          BurnInput      in;
+          PetscReal      grad[3];
           CellBurnInput(c, a, nodes, i, j, k, s, &in, grad);
           const PetscReal M = in.M_s;
-          BurnOutput out;
+          BurnOutput      out;
           PetscCall(c.burn[s]->Evaluate(in, &out));
           if (!(out.dm > 0)) continue;
           const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s, *u = cell + ice.Offset(m, icef::vel);
@@ -284,7 +285,7 @@ PetscErrorCode CouplingBurn(Coupling &c)
           target[dim] = idx;
           weight[dim] = GasRoom(ice, a, idx);
           for (PetscInt d = 0; d < dim; ++d) {
-            const PetscReal share = norm > 0 ? std::fabs(grad[d]) / norm : (d == 0 ? 1.0 : 0.0);
+            const PetscReal share  = norm > 0 ? std::fabs(grad[d]) / norm : (d == 0 ? 1.0 : 0.0);
             PetscInt        ijk[3] = {i, j, k};
             ijk[d] += grad[d] > 0 ? -1 : 1;
             if (ijk[d] < 0 || ijk[d] >= ice.cells[d]) ijk[d] = d == 0 ? i : d == 1 ? j : k; // at a domain face: here
@@ -383,7 +384,7 @@ struct BurnParticles {
       const PetscReal J = Mat3CMap(F + 9 * p).determinant(); // a crushed reactant burns out, burning this step or not
       if (f <= 0 && J >= c.burnout_volume_ratio) continue;
       const PetscReal keep = PetscMax(1 - f, 0.0), cv = ice.materials[c.first + s].eos->cv;
-      PetscReal       v2   = 0;
+      PetscReal       v2 = 0;
       for (int a = 0; a < DIM; ++a) v2 += v[DIM * p + a] * v[DIM * p + a];
       // what leaves the particles goes to the gas: it leaves the solids' energy balance
       const PetscReal burnt = (1 - keep) * mass[p];
@@ -402,7 +403,7 @@ struct BurnParticles {
       energy[p] *= keep;
       if (mass[p] < c.burnout * c.seed_mass[s] || J < c.burnout_volume_ratio) {
         // burnt out: the rest burns into the product in the particle's cell (ice.md 2.4's bookkeeping)
-        remove[p] = 1;
+        remove[p]       = 1;
         PetscInt ijk[3] = {0, 0, 0};
         for (int d = 0; d < DIM; ++d) ijk[d] = PetscMin(PetscMax((PetscInt)std::floor((x[DIM * p + d] - ice.lower[d]) / ice.h[d]), ice.xs[d]), ice.xs[d] + ice.xm[d] - 1);
         const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), m = c.first + s;
@@ -426,7 +427,7 @@ struct BurnParticles {
 
 PetscErrorCode CouplingBurnParticles(Coupling &c)
 {
-  MpmSolver &mpm   = *c.mpm;
+  MpmSolver &mpm = *c.mpm;
   IceSolver &ice = *c.ice;
   PetscFunctionBeginUser;
   if (c.burnt_fraction.empty()) PetscFunctionReturn(PETSC_SUCCESS);
@@ -435,10 +436,10 @@ PetscErrorCode CouplingBurnParticles(Coupling &c)
   // cell weights of the projection. A particle then loses sum_c W_pc phi_c of its mass, W_pc its
   // projection weight to cell c, and the particles of a cell lose exactly the mass that burnt
   // there, phi_c M_c (the start-of-step positions, before G2P moves them).
-  DM          da = c.da_phi;
-  Vec         global = c.phi_global, local = c.phi_local;
+  DM           da     = c.da_phi;
+  Vec          global = c.phi_global, local = c.phi_local;
   PetscScalar *phi;
-  PetscInt    xs[3], xm[3];
+  PetscInt     xs[3], xm[3];
   PetscCall(DMDAGetCorners(da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   PetscCall(VecGetArray(global, &phi));
   PetscInt l = 0;

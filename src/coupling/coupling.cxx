@@ -19,10 +19,13 @@ namespace burst {
 // stays positive so that a solid in tension lets go of the gas. No thermal part.
 class SolidCouplingEOS final : public GasEOS {
 public:
-  PetscReal K = 0, rho0 = 0, p_ref = 101325, T_ref = 300;
+  PetscReal      K = 0, rho0 = 0, p_ref = 101325, T_ref = 300;
   PetscErrorCode SetFromOptions(PetscOptionItems *, const char[]) override { return PETSC_SUCCESS; }
-  PetscErrorCode View(PetscViewer viewer) const override { return PetscViewerASCIIPrintf(viewer, "solid coupling EOS: bulk modulus %g Pa, density %g kg/m^3, reference pressure %g Pa, c_v %g J/(kg K)\n", (double)K, (double)rho0, (double)p_ref, (double)cv); }
-  GasEOSPoint    Evaluate(PetscReal rho, PetscReal) const override
+  PetscErrorCode View(PetscViewer viewer) const override
+  {
+    return PetscViewerASCIIPrintf(viewer, "solid coupling EOS: bulk modulus %g Pa, density %g kg/m^3, reference pressure %g Pa, c_v %g J/(kg K)\n", (double)K, (double)rho0, (double)p_ref, (double)cv);
+  }
+  GasEOSPoint Evaluate(PetscReal rho, PetscReal) const override
   {
     if (rho >= rho0) return {p_ref + 0.5 * K * (rho / rho0 - rho0 / rho), 0.5 * K * (1 / rho0 + rho0 / (rho * rho)), 0};
     const PetscReal p = p_ref * std::pow(rho / rho0, K / p_ref);
@@ -54,9 +57,12 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
   PetscOptionsBegin(mpm.comm, "", "Gas-solid coupling", "Coupling");
   PetscCall(PetscOptionsReal("-coupling_reference_pressure", "Reference pressure p_ref of the solids' coupling equation of state and of the stress the gas adds to the particles (Pa), > 0", "", c->p_ref, &c->p_ref, nullptr));
   PetscCall(CheckRange(mpm.comm, "-coupling_reference_pressure", c->p_ref, 0, PETSC_MAX_REAL, PETSC_TRUE));
-  PetscCall(PetscOptionsReal("-coupling_surface_heat_transfer", "Convective heat transfer coefficient h between the solids' surfaces and the gas two cells out (W/(m^2 K)), >= 0; 0: off (src/coupling/surface_heat.cxx)", "", c->surface_h, &c->surface_h, nullptr));
+  PetscCall(PetscOptionsReal("-coupling_surface_heat_transfer", "Convective heat transfer coefficient h between the solids' surfaces and the gas two cells out (W/(m^2 K)), >= 0; 0: off (src/coupling/surface_heat.cxx)", "", c->surface_h,
+                             &c->surface_h, nullptr));
   PetscCall(CheckRange(mpm.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
-  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work", "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "", c->charge_pressure_work, &c->charge_pressure_work, nullptr));
+  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work",
+                             "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "",
+                             c->charge_pressure_work, &c->charge_pressure_work, nullptr));
   PetscOptionsEnd();
   c->solid_of.assign(mpm.materials.size(), -1);
   for (size_t m = 0; m < mpm.materials.size(); ++m) {
@@ -64,11 +70,11 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
     PetscReal       v[3];
     PetscCheck(!mat.IsRigid(v), mpm.comm, PETSC_ERR_SUP, "Material %s: a rigid body in a scene with gas is not supported yet", mat.Name());
     PetscCheck(mat.BulkModulus() > 0, mpm.comm, PETSC_ERR_SUP, "Material %s (model %s) reports no bulk modulus, which the gas coupling needs", mat.Name(), mat.Model());
-    auto      eos  = std::make_unique<SolidCouplingEOS>();
-    eos->K         = mat.BulkModulus();
-    eos->rho0      = mat.Density();
-    eos->p_ref     = c->p_ref;
-    PetscBool set  = PETSC_FALSE;
+    auto eos        = std::make_unique<SolidCouplingEOS>();
+    eos->K          = mat.BulkModulus();
+    eos->rho0       = mat.Density();
+    eos->p_ref      = c->p_ref;
+    PetscBool   set = PETSC_FALSE;
     std::string pre = std::string(mat.Name()) + "_";
     PetscOptionsBegin(mpm.comm, pre.c_str(), "Solid as the gas sees it", "Coupling");
     PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat of the solid for the heat exchange with the gas (J/(kg K)), > 0; required with gas", "", eos->cv, &eos->cv, &set));
@@ -77,10 +83,10 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
     PetscCall(CheckRange(mpm.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     c->solid_of[m] = c->nsolid++;
     c->rho0.push_back(mat.Density());
-    eos->name_     = "solid_coupling";
+    eos->name_ = "solid_coupling";
     solids.push_back({mat.Name(), eos.release(), 300});
   }
-  *coupling = c.release();
+  *coupling            = c.release();
   mpm.ambient_pressure = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -88,7 +94,7 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
 namespace {
 // Particles -> nodes, per solid material: mass, mass T, momentum.
 struct ProjectKernel {
-  MpmSolver         &mpm;
+  MpmSolver   &mpm;
   Coupling    &c;
   PetscScalar *out;
   template <int DIM, ShapeType S>
@@ -187,7 +193,7 @@ struct ParticleKernel {
 
 PetscErrorCode CouplingProjectSolids(Coupling &c)
 {
-  MpmSolver   &mpm   = *c.mpm;
+  MpmSolver   &mpm = *c.mpm;
   IceSolver   &ice = *c.ice;
   PetscScalar *nodes, *a;
   PetscFunctionBeginUser;
@@ -203,7 +209,7 @@ PetscErrorCode CouplingProjectSolids(Coupling &c)
   // nodes -> cells
   const LocalNodeIndex index(mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, S = ice.stride;
-  const PetscReal      V   = ice.CellVolume();
+  const PetscReal      V = ice.CellVolume();
   PetscCall(VecGetArray(c.mass_local, &nodes));
   PetscCall(IceGetLocalArray(ice, &a));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -222,7 +228,7 @@ PetscErrorCode CouplingProjectSolids(Coupling &c)
           const PetscReal M_tiny = ice.rho_tiny * c.rho0[s] * V;
           const PetscReal T_old  = cell[ice.Offset(m, icef::temp)];
           // an (almost) empty cell keeps its last temperature (ice.md 2.1)
-          const PetscReal share = M / (M + M_tiny);
+          const PetscReal share           = M / (M + M_tiny);
           cell[ice.Offset(m, icef::rho)]  = (M + M_tiny) / V;
           cell[ice.Offset(m, icef::temp)] = M > 0 ? share * (MT / M) + (1 - share) * T_old : T_old;
           for (PetscInt d = 0; d < 3; ++d) cell[ice.Offset(m, icef::vel + d)] = d < dim ? P[d] / (M + M_tiny) : 0;
@@ -237,7 +243,7 @@ PetscErrorCode CouplingProjectSolids(Coupling &c)
 
 PetscErrorCode CouplingPressureToParticles(Coupling &c)
 {
-  MpmSolver         &mpm   = *c.mpm;
+  MpmSolver         &mpm = *c.mpm;
   IceSolver         &ice = *c.ice;
   const PetscScalar *a;
   PetscScalar       *inc;
@@ -272,10 +278,10 @@ PetscErrorCode CouplingPressureToParticles(Coupling &c)
 
 PetscErrorCode CouplingSolidVelocity(Coupling &c)
 {
-  MpmSolver         &mpm   = *c.mpm;
-  IceSolver         &ice = *c.ice;
-  const PetscScalar *nodes, *vel;
-  PetscScalar       *a;
+  MpmSolver           &mpm = *c.mpm;
+  IceSolver           &ice = *c.ice;
+  const PetscScalar   *nodes, *vel;
+  PetscScalar         *a;
   const LocalNodeIndex index(mpm.grid);
   const PetscInt       dim = ice.dim, stride = 2 + dim, vdof = mpm.grid.num_velocity_fields * 2 * dim;
   PetscFunctionBeginUser;
@@ -289,7 +295,7 @@ PetscErrorCode CouplingSolidVelocity(Coupling &c)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         PetscScalar *cell = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt s = 0; s < c.nsolid; ++s) {
-          const PetscInt m = c.first + s;
+          const PetscInt m    = c.first + s;
           PetscReal      P[3] = {0, 0, 0};
           ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) {
             const PetscInt n = index(node[0], node[1], node[2]);
@@ -308,7 +314,7 @@ PetscErrorCode CouplingSolidVelocity(Coupling &c)
 
 PetscErrorCode CouplingIncrementsToNodes(Coupling &c)
 {
-  MpmSolver         &mpm   = *c.mpm;
+  MpmSolver         &mpm = *c.mpm;
   IceSolver         &ice = *c.ice;
   Grid              &g   = mpm.grid;
   const PetscScalar *a;
@@ -333,7 +339,7 @@ PetscErrorCode CouplingIncrementsToNodes(Coupling &c)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *cl = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt s = 0; s < c.nsolid; ++s) {
-          const PetscInt m = c.first + s;
+          const PetscInt  m = c.first + s;
           const PetscReal M = cl[ice.Offset(m, icef::rho)] * V;
           c.counters[kHeatToSolidCells] += M * ice.materials[m].eos->cv * (cl[ice.Offset(m, icef::temp_L)] - cl[ice.Offset(m, icef::temp)]);
           for (PetscInt d = 0; d < dim; ++d) {
@@ -396,7 +402,7 @@ PetscErrorCode CouplingIncrementsToNodes(Coupling &c)
             ni[d] = value;
             c.counters[kKineticToNodes] += m_node * (vel[l * vdof + f * 2 * dim + dim + d] + 0.5 * value) * value;
             vel[l * vdof + f * 2 * dim + dim + d] += value; // v_new of field f
-            if (value != 0) g.velocity_written[l] = 1;       // (the next grid update must zero it if the node is empty)
+            if (value != 0) g.velocity_written[l] = 1;      // (the next grid update must zero it if the node is empty)
           }
           ni[dim] = weight[f] > 0 ? dT[f] / weight[f] : 0;
         }

@@ -30,16 +30,16 @@ class CheckpointValues;
 void CouplingCheckpointValues(Coupling &c, CheckpointValues &values);
 
 // The coupled phases, in the order of src/step.cxx.
-PetscErrorCode CouplingProjectSolids(Coupling &c);       // particles -> nodes -> cells (M, u, T)
-PetscErrorCode CouplingPressureToParticles(Coupling &c); // cell p -> nodes -> particles
-PetscErrorCode CouplingSolidVelocity(Coupling &c);       // nodal v* after the MPM update -> cells
-PetscErrorCode CouplingIncrementsToNodes(Coupling &c);   // pressure force + exchange -> nodes
-PetscErrorCode CouplingHeatToParticles(Coupling &c);     // exchange heat -> particles
-PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c);    // -coupling_surface_heat_transfer
-PetscErrorCode CouplingSurfaceHeat(Coupling &c);         // convective heat from the gas to the solids' surfaces (after the cell exchange)
+PetscErrorCode CouplingProjectSolids(Coupling &c);                      // particles -> nodes -> cells (M, u, T)
+PetscErrorCode CouplingPressureToParticles(Coupling &c);                // cell p -> nodes -> particles
+PetscErrorCode CouplingSolidVelocity(Coupling &c);                      // nodal v* after the MPM update -> cells
+PetscErrorCode CouplingIncrementsToNodes(Coupling &c);                  // pressure force + exchange -> nodes
+PetscErrorCode CouplingHeatToParticles(Coupling &c);                    // exchange heat -> particles
+PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c);                   // -coupling_surface_heat_transfer
+PetscErrorCode CouplingSurfaceHeat(Coupling &c);                        // convective heat from the gas to the solids' surfaces (after the cell exchange)
 PetscErrorCode CouplingSurfaceHeatTotal(Coupling &c, PetscReal *total); // J so far, global
-PetscErrorCode CouplingMeasureSurfaceHeat(Coupling &c, PetscBool on); // CouplingHeatToParticles adds each particle's heat (J) to its surface_heat field
-PetscErrorCode CouplingChargePressureWork(Coupling &c);  // the gas pays the work its pressure did on the solids
+PetscErrorCode CouplingMeasureSurfaceHeat(Coupling &c, PetscBool on);   // CouplingHeatToParticles adds each particle's heat (J) to its surface_heat field
+PetscErrorCode CouplingChargePressureWork(Coupling &c);                 // the gas pays the work its pressure did on the solids
 // Burning (burn.cxx): the reactants' models and products; the mass, momentum and energy that burn
 // in each cell (after the equilibration); the particles' share of it (right after, at the positions
 // the cells were projected from, so that the particles lose exactly what the gas gains).
@@ -78,8 +78,8 @@ enum CouplingCounter : int {
   kHeatToParticles,
   kHeatToSolidCells,
   kReactantThermalCells,
-  kMomentumToSolidCells, // 3 values
-  kMomentumToNodes = kMomentumToSolidCells + 3, // 3 values
+  kMomentumToSolidCells,                            // 3 values
+  kMomentumToNodes     = kMomentumToSolidCells + 3, // 3 values
   kKineticToSolidCells = kMomentumToNodes + 3,
   kKineticToNodes,
   kAmbientStressWork,   // the work of the (p - p_ref) I the particles carry in their stress (pressure_work.cxx)

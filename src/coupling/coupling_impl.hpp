@@ -7,20 +7,21 @@
 namespace burst {
 
 struct Coupling {
-  MpmSolver            *mpm = nullptr;       // the two solvers it couples (not owned)
-  IceSolver            *ice = nullptr;
-  PetscInt              nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
-  std::vector<PetscInt> solid_of;              // MPM material id -> solid index
-  PetscReal             p_ref = 101325;
-  std::vector<PetscReal> rho0;                 // per solid: density as seeded (its coupling EOS at p_ref)
-  DM                    da_mass = nullptr;     // nodes: per solid [mass, mass T, momentum (dim)]
-  Vec                   mass_global = nullptr, mass_local = nullptr;
-  DM                    da_inc = nullptr;      // nodes: [p, then per deformable velocity field: dv (dim), dT]
-  Vec                   inc_global = nullptr, inc_local = nullptr;
-  PetscInt              mass_stride = 0;
-  PetscInt              nfield = 1;            // deformable velocity fields (2 with -mpm_contact_material)
-  std::vector<PetscInt> field_of;              // per solid: its velocity field
-  PetscInt              IncDof(PetscInt dim) const { return 1 + nfield * (dim + 1); }
+  MpmSolver             *mpm    = nullptr; // the two solvers it couples (not owned)
+  IceSolver             *ice    = nullptr;
+  PetscInt               nsolid = 0, first = 0; // solids are ICE materials first .. first + nsolid - 1
+  std::vector<PetscInt>  solid_of;              // MPM material id -> solid index
+  PetscReal              p_ref = 101325;
+  std::vector<PetscReal> rho0;                  // per solid: density as seeded (its coupling EOS at p_ref)
+  DM                     da_mass     = nullptr; // nodes: per solid [mass, mass T, momentum (dim)]
+  Vec                    mass_global = nullptr, mass_local = nullptr;
+  DM                     da_inc     = nullptr; // nodes: [p, then per deformable velocity field: dv (dim), dT]
+  Vec                    inc_global = nullptr, inc_local = nullptr;
+  PetscInt               mass_stride = 0;
+  PetscInt               nfield      = 1; // deformable velocity fields (2 with -mpm_contact_material)
+  std::vector<PetscInt>  field_of;        // per solid: its velocity field
+
+  PetscInt IncDof(PetscInt dim) const { return 1 + nfield * (dim + 1); }
   // Burning (burn.cxx), per solid: the model (null: inert), the product gas (ICE material index),
   // the mass of a particle as seeded (burnt-out threshold); per local cell and solid, the fraction
   // of the solid's cell mass burnt this step.
@@ -28,32 +29,32 @@ struct Coupling {
   std::vector<PetscInt>                   product;
   std::vector<PetscReal>                  seed_mass;
   std::vector<PetscReal>                  burnt_fraction;
-  PetscReal                               burnout = 1e-3; // a particle below this fraction of its seeded mass is removed
-  PetscReal                               burnout_volume_ratio = 0.5; // a burning particle crushed below this det F burns out
-  PetscReal                               burnt_mass = 0; // kg converted to gas so far (this rank)
-  PetscInt64                              burnt_particles = 0; // removed when burnt out (global)
-  PetscReal                               counters[kNumCouplingCounters] = {}; // the budget counters (coupling.hpp)
-  std::vector<char>                       burnt_out;           // per local particle, reused every step
-  DM                                      da_phi = nullptr;    // nodes: burnt fraction per solid
+  PetscReal                               burnout                        = 1e-3; // a particle below this fraction of its seeded mass is removed
+  PetscReal                               burnout_volume_ratio           = 0.5;  // a burning particle crushed below this det F burns out
+  PetscReal                               burnt_mass                     = 0;    // kg converted to gas so far (this rank)
+  PetscInt64                              burnt_particles                = 0;    // removed when burnt out (global)
+  PetscReal                               counters[kNumCouplingCounters] = {};   // the budget counters (coupling.hpp)
+  std::vector<char>                       burnt_out;                             // per local particle, reused every step
+  DM                                      da_phi     = nullptr;                  // nodes: burnt fraction per solid
   Vec                                     phi_global = nullptr, phi_local = nullptr;
-  DM                                      da_source = nullptr; // cells: the burn sources, ghosts added to their owners
+  DM                                      da_source     = nullptr; // cells: the burn sources, ghosts added to their owners
   Vec                                     source_global = nullptr, source_local = nullptr;
   // The work of the gas pressure on the solids (pressure_work.cxx): charged to the gases or not,
   // and the nodes that gather the particles' share of it.
-  PetscBool                               charge_pressure_work = PETSC_TRUE;
-  DM                                      da_impulse = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
-  Vec                                     impulse_global = nullptr, impulse_local = nullptr;
-  DM                                      da_dv = nullptr;   // cells: ice.solid_pressure_dv (dv_owned wraps it) and its ghost cells (dv_local)
-  Vec                                     dv_owned = nullptr, dv_local = nullptr;
-  DM                                      da_work = nullptr; // nodes: the work of the gas on the solids there
-  Vec                                     work_global = nullptr, work_local = nullptr;
+  PetscBool charge_pressure_work = PETSC_TRUE;
+  DM        da_impulse           = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
+  Vec       impulse_global = nullptr, impulse_local = nullptr;
+  DM        da_dv    = nullptr; // cells: ice.solid_pressure_dv (dv_owned wraps it) and its ghost cells (dv_local)
+  Vec       dv_owned = nullptr, dv_local = nullptr;
+  DM        da_work     = nullptr; // nodes: the work of the gas on the solids there
+  Vec       work_global = nullptr, work_local = nullptr;
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
   // Convective heat transfer at the solids' surfaces (surface_heat.cxx)
-  PetscReal surface_h    = 0; // W/(m^2 K); 0: off
-  PetscReal surface_heat = 0; // J the solids took from the gas so far (this rank)
-  DM        da_surface   = nullptr; // cells, dof 1: the heat the gases of each cell give
-  Vec       surface_global = nullptr, surface_local = nullptr;
-  PetscBool measure_surface_heat = PETSC_FALSE; // the heat each particle receives is added to its surface_heat field (src/phases.cxx)
+  PetscReal     surface_h      = 0;       // W/(m^2 K); 0: off
+  PetscReal     surface_heat   = 0;       // J the solids took from the gas so far (this rank)
+  DM            da_surface     = nullptr; // cells, dof 1: the heat the gases of each cell give
+  Vec           surface_global = nullptr, surface_local = nullptr;
+  PetscBool     measure_surface_heat = PETSC_FALSE; // the heat each particle receives is added to its surface_heat field (src/phases.cxx)
   PetscLogEvent ev_project = 0, ev_burn = 0, ev_burn_particles = 0, ev_pressure = 0, ev_solid_velocity = 0, ev_increments = 0, ev_heat = 0, ev_work = 0, ev_surface = 0;
   ~Coupling()
   {
@@ -83,7 +84,6 @@ struct Coupling {
     DMDestroy(&da_impulse);
   }
 };
-
 
 // The impulse of the (p - p_ref) I the particles carry, per node and velocity field, for the work the
 // gases pay (pressure_work.cxx; after the pressure reaches the particles, before P2G(f) uses it).

@@ -25,7 +25,7 @@ namespace {
 // Particles -> nodes: the impulse -dt V_p (p_p - p_ref) grad N_ip of the ambient stress, as P2G(f)
 // will add it to the internal force (same positions, volumes and weights), per velocity field.
 struct AmbientImpulseKernel {
-  MpmSolver         &mpm;
+  MpmSolver   &mpm;
   Coupling    &c;
   PetscScalar *out;
   template <int DIM, ShapeType S>
@@ -86,7 +86,7 @@ PetscErrorCode CouplingAmbientImpulse(Coupling &c)
 
 PetscErrorCode CouplingChargePressureWork(Coupling &c)
 {
-  MpmSolver &mpm   = *c.mpm;
+  MpmSolver &mpm = *c.mpm;
   IceSolver &ice = *c.ice;
   Grid      &g   = mpm.grid;
   PetscFunctionBeginUser;
@@ -151,10 +151,8 @@ PetscErrorCode CouplingChargePressureWork(Coupling &c)
   // a cell's gases pay in proportion to their heat capacity M c_v (traces excluded): by volume
   // fraction, an almost empty pocket in the charge (1e-13 kg/m^3 over 1 % of the cell) took a node's
   // work and reached 6e9 K, and the time step 1e-10 s
-  auto heat_capacity = [&](const PetscScalar *cell, PetscInt m) {
-    return cell[ice.Offset(m, icef::theta)] >= ice.trace_fraction ? cell[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv : 0.0;
-  };
-  auto gas_capacity = [&](const PetscScalar *cell) {
+  auto heat_capacity = [&](const PetscScalar *cell, PetscInt m) { return cell[ice.Offset(m, icef::theta)] >= ice.trace_fraction ? cell[ice.Offset(m, icef::rho_L)] * ice.materials[m].eos->cv : 0.0; };
+  auto gas_capacity  = [&](const PetscScalar *cell) {
     PetscReal capacity = 0;
     for (PetscInt m = 0; m < ice.ngas; ++m) capacity += heat_capacity(cell, m);
     return capacity;

@@ -43,14 +43,15 @@ PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c)
 
 PetscErrorCode CouplingSurfaceHeat(Coupling &c)
 {
-  MpmSolver     &mpm   = *c.mpm;
-  IceSolver     &ice = *c.ice;
-  PetscScalar   *a, *sink;
+  MpmSolver   &mpm = *c.mpm;
+  IceSolver   &ice = *c.ice;
+  PetscScalar *a, *sink;
   PetscFunctionBeginUser;
   if (c.surface_h <= 0) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(PetscLogEventBegin(c.ev_surface, 0, 0, 0, 0));
   const PetscInt  S = ice.stride, dim = ice.dim;
   const PetscReal V = ice.CellVolume();
+
   auto solid_fraction = [&](const PetscScalar *cell) {
     PetscReal theta = 0;
     for (PetscInt s = 0; s < c.nsolid; ++s) theta += cell[ice.Offset(c.first + s, icef::theta)];
@@ -63,24 +64,24 @@ PetscErrorCode CouplingSurfaceHeat(Coupling &c)
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
-        const PetscInt idx   = ice.LocalIndex(i, j, k);
-        PetscScalar   *cell  = a + idx * S;
+        const PetscInt  idx   = ice.LocalIndex(i, j, k);
+        PetscScalar    *cell  = a + idx * S;
         const PetscReal theta = solid_fraction(cell);
         if (!(theta > 0)) continue;
-        const PetscInt ijk[3] = {i, j, k};
+        const PetscInt ijk[3]  = {i, j, k};
         PetscReal      grad[3] = {0, 0, 0}, drop[3] = {0, 0, 0}, norm = 0;
         for (PetscInt d = 0; d < dim; ++d) {
           // the direction from central differences (one-sided at a domain face); the size from the
           // drops to lower neighbours, so the surface sums to the body's outline (a 1-D profile
           // telescopes) and a cell with a mere trace of solid beside a body takes none of it
-          const bool lo = ijk[d] > 0, hi = ijk[d] < ice.cells[d] - 1;
+          const bool      lo = ijk[d] > 0, hi = ijk[d] < ice.cells[d] - 1;
           const PetscReal up = hi ? solid_fraction(a + (idx + ice.lstride[d]) * S) : theta;
           const PetscReal dn = lo ? solid_fraction(a + (idx - ice.lstride[d]) * S) : theta;
           grad[d]            = (up - dn) / (((lo ? 1 : 0) + (hi ? 1 : 0)) * ice.h[d]);
           drop[d]            = (PetscMax(0, theta - up) + PetscMax(0, theta - dn)) / ice.h[d];
           norm += drop[d] * drop[d];
         }
-        norm = std::sqrt(norm);
+        norm            = std::sqrt(norm);
         PetscReal gnorm = 0;
         for (PetscInt d = 0; d < dim; ++d) gnorm += grad[d] * grad[d];
         gnorm = std::sqrt(gnorm);
@@ -99,7 +100,7 @@ PetscErrorCode CouplingSurfaceHeat(Coupling &c)
         // gas pockets between wall and charge, is not one, though the gas beyond a thin wall is hot)
         const PetscReal theta_mid = solid_fraction(a + ice.LocalIndex(mid[0], mid[1], mid[2]) * S);
         if (theta_mid > theta + 0.01 || solid_fraction(fc) > theta_mid + 0.01) continue; // (0.01: the fractions' small ripples)
-        PetscReal          Cg = 0, CgT = 0, Cs = 0, CsT = 0;
+        PetscReal Cg = 0, CgT = 0, Cs = 0, CsT = 0;
         for (PetscInt g = 0; g < ice.ngas; ++g) {
           const PetscReal C = fc[ice.Offset(g, icef::rho_L)] * V * ice.materials[g].eos->cv;
           Cg += C;
@@ -113,7 +114,7 @@ PetscErrorCode CouplingSurfaceHeat(Coupling &c)
         }
         if (!(Cg > 0 && Cs > 0)) continue;
         const PetscReal Tg = CgT / Cg, Ts = CsT / Cs;
-        PetscReal       Q  = c.surface_h * V * norm * (Tg - Ts) * ice.dt;
+        PetscReal       Q = c.surface_h * V * norm * (Tg - Ts) * ice.dt;
         // (a quarter: several surface cells may face the same gas cell)
         const PetscReal cap = 0.25 * std::fabs(Tg - Ts) * Cg * Cs / (Cg + Cs);
         Q                   = PetscMax(-cap, PetscMin(cap, Q));

@@ -39,14 +39,14 @@ void LimitedGradient(const IceSolver &ice, Value value, PetscReal *grad)
   for (PetscInt k = lo[2]; k < hi[2]; ++k)
     for (PetscInt j = lo[1]; j < hi[1]; ++j)
       for (PetscInt i = lo[0]; i < hi[0]; ++i) {
-        const PetscInt  idx = ice.LocalIndex(i, j, k);
-        const PetscReal q   = value(idx);
+        const PetscInt  idx  = ice.LocalIndex(i, j, k);
+        const PetscReal q    = value(idx);
         PetscReal       qmax = q, qmin = q, g[3] = {0, 0, 0}, reach = 0;
         for (PetscInt d = 0; d < DIM; ++d) {
           const PetscReal qm = value(idx - ice.lstride[d]), qp = value(idx + ice.lstride[d]);
-          g[d]               = (qp - qm) / (2 * ice.h[d]);
-          qmax               = PetscMax(qmax, PetscMax(qm, qp));
-          qmin               = PetscMin(qmin, PetscMin(qm, qp));
+          g[d] = (qp - qm) / (2 * ice.h[d]);
+          qmax = PetscMax(qmax, PetscMax(qm, qp));
+          qmin = PetscMin(qmin, PetscMin(qm, qp));
           reach += std::fabs(g[d]) * 0.5 * ice.h[d]; // largest vertex deviation
         }
         PetscReal alpha = 1;
@@ -74,9 +74,9 @@ void CompatibleGradient(const IceSolver &ice, Value value, PetscInt density, con
         PetscReal       qmax = q, qmin = q, g[3] = {0, 0, 0};
         for (PetscInt d = 0; d < DIM; ++d) {
           const PetscReal qm = value(idx - ice.lstride[d]), qp = value(idx + ice.lstride[d]);
-          g[d]               = (qp - qm) / (2 * ice.h[d]);
-          qmax               = PetscMax(qmax, PetscMax(qm, qp));
-          qmin               = PetscMin(qmin, PetscMin(qm, qp));
+          g[d] = (qp - qm) / (2 * ice.h[d]);
+          qmax = PetscMax(qmax, PetscMax(qm, qp));
+          qmin = PetscMin(qmin, PetscMin(qm, qp));
         }
         PetscReal alpha = 1;
         for (PetscInt v = 0; v < nvert; ++v) {
@@ -124,19 +124,25 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
 {
   constexpr PetscInt nq = NQ;
   const PetscInt     S = ice.stride, n = ice.nmat, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
-  const bool      second = ice.advection_order == 2;
-  const PetscReal dt     = ice.dt;
+  const bool         second = ice.advection_order == 2;
+  const PetscReal    dt     = ice.dt;
   ice.work_grad.resize((size_t)nlocal * 3 * (nq + 1));
   ice.work_adv.resize((size_t)nlocal * (nq + 1));
   PetscReal *grad_rho = ice.work_grad.data();
-  auto       grad_q   = [&](PetscInt q) { return ice.work_grad.data() + (size_t)nlocal * 3 * (q + 1); };
+
+  auto grad_q = [&](PetscInt q) { return ice.work_grad.data() + (size_t)nlocal * 3 * (q + 1); };
   // Gradients: density, then q (compatible) or density * q
   if (second) {
-    LimitedGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + density]; }, grad_rho);
+    LimitedGradient<DIM>(
+      ice, [&](PetscInt idx) { return a[idx * S + density]; }, grad_rho);
     for (PetscInt q = 0; q < nq; ++q) {
       const PetscInt f = q_fields[q];
-      if (ice.compatible_fluxes) CompatibleGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
-      else LimitedGradient<DIM>(ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
+      if (ice.compatible_fluxes)
+        CompatibleGradient<DIM>(
+          ice, [&](PetscInt idx) { return a[idx * S + f]; }, density, a, grad_rho, grad_q(q));
+      else
+        LimitedGradient<DIM>(
+          ice, [&](PetscInt idx) { return a[idx * S + density] * a[idx * S + f]; }, grad_q(q));
     }
     FlattenInflowGhosts(ice, grad_rho);
     for (PetscInt q = 0; q < nq; ++q) FlattenInflowGhosts(ice, grad_q(q));
@@ -160,7 +166,7 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
       if (e == d) r[e] = side * (0.5 * ice.h[e] - 0.5 * out_distance(idx, e, side));
       else r[e] = 0.5 * (out_distance(idx, e, -1) - out_distance(idx, e, +1));
     }
-    const PetscReal *gr = grad_rho + 3 * idx;
+    const PetscReal *gr       = grad_rho + 3 * idx;
     const PetscReal  rho_slab = rho + gr[0] * r[0] + gr[1] * r[1] + gr[2] * r[2];
     values[0]                 = rho_slab;
     for (PetscInt q = 0; q < nq; ++q) {
@@ -191,8 +197,8 @@ void AdvectionIncrement(IceSolver &ice, const PetscScalar *a, PetscInt m, PetscI
           const PetscReal volume = std::fabs(u) * courant;
           if (u > 0) slab(L, d, +1, values);
           else slab(R, d, -1, values);
-          const PetscReal sign  = u > 0 ? 1 : -1; // flux from L to R
-          const PetscInt  ijk[3] = {i, j, k};
+          const PetscReal sign    = u > 0 ? 1 : -1; // flux from L to R
+          const PetscInt  ijk[3]  = {i, j, k};
           const bool      R_owned = ijk[d] < ice.xs[d] + ice.xm[d];
           const bool      L_owned = ijk[d] > ice.xs[d];
           for (PetscInt q = 0; q <= nq; ++q) {
@@ -238,7 +244,7 @@ PetscErrorCode IceVolumeOutflow(IceSolver &ice, const PetscScalar *a, std::vecto
   const PetscInt nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
   PetscFunctionBeginUser;
   out.assign(nlocal, 0);
-  std::vector<PetscReal> &inc     = ice.work_increment;
+  std::vector<PetscReal> &inc = ice.work_increment;
   inc.resize(nlocal);
   PetscReal *outs[1] = {inc.data()};
   for (PetscInt m = 0; m < ice.nmat; ++m) {
@@ -274,7 +280,9 @@ PetscErrorCode IceAdvect(IceSolver &ice)
             fraction += PetscMax(0.0, -ice.face_vel[d][idx * n + m]) * ice.dt / ice.h[d];
             fraction += PetscMax(0.0, ice.face_vel[d][(idx + ice.lstride[d]) * n + m]) * ice.dt / ice.h[d];
           }
-          PetscCheck(fraction <= 1, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": material %s leaves cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") with %g of its volume in one step (more than the cell); reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)fraction);
+          PetscCheck(fraction <= 1, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+                     "Gas step %" PetscInt_FMT ": material %s leaves cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") with %g of its volume in one step (more than the cell); reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i,
+                     j, k, (double)fraction);
         }
       }
   // Total energy: advect c_v T + |u|^2/2 instead of c_v T, so the kinetic energy that the remap
@@ -288,7 +296,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
         PetscReal    u2 = 0;
         for (PetscInt d = 0; d < dim; ++d) u2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
         // with a cold energy, energy_L holds e_cold/c_v at the Lagrangian state (sources.cxx)
-        const PetscReal cold = ice.materials[m].eos->HasColdEnergy() ? c[ice.Offset(m, icef::energy_L)] : 0;
+        const PetscReal cold             = ice.materials[m].eos->HasColdEnergy() ? c[ice.Offset(m, icef::energy_L)] : 0;
         c[ice.Offset(m, icef::energy_L)] = c[ice.Offset(m, icef::temp_L)] + cold + 0.5 * u2 / ice.materials[m].eos->cv;
       }
   // velocity components, then energy (or temperature); with total energy also the temperature, the
@@ -301,8 +309,8 @@ PetscErrorCode IceAdvect(IceSolver &ice)
   if (transport_volume)
     for (PetscInt idx = 0; idx < nlocal; ++idx)
       for (PetscInt m = 0; m < ice.ngas; ++m) {
-        PetscScalar    *c     = a + idx * S;
-        const PetscReal v     = c[ice.Offset(m, icef::spvol)], rho_L = c[ice.Offset(m, icef::rho_L)];
+        PetscScalar    *c = a + idx * S;
+        const PetscReal v = c[ice.Offset(m, icef::spvol)], rho_L = c[ice.Offset(m, icef::rho_L)];
         const PetscReal dr    = ice.has_mass_source ? PetscMax(ice.mass_source[idx * n + m], 0.0) : 0;
         const PetscReal vol_L = (rho_L - dr) * v * (1 - c[ice.Offset(m, icef::kappa)] * c[ice.CellOffset(icef::dp_dil)]) + dr * v;
         if (vol_L > 0 && rho_L > 0) c[ice.Offset(m, icef::spvol)] = vol_L / rho_L;
@@ -320,12 +328,12 @@ PetscErrorCode IceAdvect(IceSolver &ice)
     ice.boundary_flux_sink = ice.boundary_flux[m]; // (booked by IceBudgetOpenFaces)
     IceAdvectionIncrement(ice, a, m, ice.Offset(m, icef::rho_L), q_fields, nq, outs);
     ice.boundary_flux_sink = nullptr;
-    const PetscReal cv = ice.materials[m].eos->cv;
+    const PetscReal cv     = ice.materials[m].eos->cv;
     // A cold energy (gas_eos.hpp): the temperature is e - e_cold at a specific volume that the next
     // equilibration keeps e with (it solves at fixed e): one material fills the cell, so its density;
     // else this step's equilibrated specific volume.
-    const GasEOS   &eos  = *ice.materials[m].eos;
-    const bool      cold = eos.HasColdEnergy() && total;
+    const GasEOS &eos  = *ice.materials[m].eos;
+    const bool    cold = eos.HasColdEnergy() && total;
     for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
       for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
         for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
@@ -373,7 +381,9 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           if (!bad && !std::isfinite(T)) bad = "temperature";
           for (PetscInt d = 0; d < dim && !bad; ++d)
             if (!std::isfinite(u[d])) bad = "velocity";
-          PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": after advection the %s of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") is not positive and finite (density %g kg/m^3, temperature %g K); reduce -ice_cfl", ice.step, bad, ice.materials[m].name.c_str(), i, j, k, (double)rho, (double)T);
+          PetscCheck(!bad, PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+                     "Gas step %" PetscInt_FMT ": after advection the %s of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") is not positive and finite (density %g kg/m^3, temperature %g K); reduce -ice_cfl", ice.step,
+                     bad, ice.materials[m].name.c_str(), i, j, k, (double)rho, (double)T);
           c[ice.Offset(m, icef::rho)] = rho;
           for (PetscInt d = 0; d < dim; ++d) c[ice.Offset(m, icef::vel + d)] = u[d];
           c[ice.Offset(m, icef::temp)] = T;

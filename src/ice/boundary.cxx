@@ -38,7 +38,7 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
       if (!touches) continue;
       const IceFaceBC &bc = ice.bc[d][s];
       for (PetscInt layer = 1; layer <= 2; ++layer) {
-        const PetscInt ghost  = s == 0 ? -layer : ice.cells[d] - 1 + layer;
+        const PetscInt ghost = s == 0 ? -layer : ice.cells[d] - 1 + layer;
         // (a domain one cell wide mirrors its only cell into both layers)
         const PetscInt mirror = s == 0 ? PetscMin(layer - 1, ice.cells[d] - 1) : PetscMax(ice.cells[d] - layer, 0);
         const PetscInt edge   = s == 0 ? 0 : ice.cells[d] - 1;
@@ -55,8 +55,8 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
           for (PetscInt j = lo[1]; j < hi[1]; ++j)
             for (PetscInt i = lo[0]; i < hi[0]; ++i) {
               PetscInt g[3] = {i, j, k}, f[3] = {i, j, k};
-              g[d]                = ghost;
-              f[d]                = source;
+              g[d]                  = ghost;
+              f[d]                  = source;
               PetscScalar       *cg = a + ice.LocalIndex(g[0], g[1], g[2]) * S;
               const PetscScalar *cf = a + ice.LocalIndex(f[0], f[1], f[2]) * S;
               for (PetscInt q = 0; q < S; ++q) cg[q] = cf[q];
@@ -76,13 +76,13 @@ PetscErrorCode IceApplyBoundaryGhosts(IceSolver &ice, PetscScalar *a)
                   const PetscReal rho  = in ? in_state.state[0] : ice.rho_tiny * rho0;
                   const PetscReal T    = in ? in_state.state[4] : cf[ice.Offset(m, icef::temp)];
                   for (int fset = 0; fset < 2; ++fset) { // state and Lagrangian copies
-                    cg[ice.Offset(m, fset ? icef::rho_L : icef::rho)]     = rho;
-                    cg[ice.Offset(m, fset ? icef::temp_L : icef::temp)]   = T;
+                    cg[ice.Offset(m, fset ? icef::rho_L : icef::rho)]   = rho;
+                    cg[ice.Offset(m, fset ? icef::temp_L : icef::temp)] = T;
                     for (PetscInt c = 0; c < 3; ++c) cg[ice.Offset(m, (fset ? icef::vel_L : icef::vel) + c)] = in_state.state[1 + c];
                   }
-                  cg[ice.Offset(m, icef::spvol)] = 1 / rho0;
+                  cg[ice.Offset(m, icef::spvol)]    = 1 / rho0;
                   cg[ice.Offset(m, icef::energy_L)] = T; // (kinetic part set by the advection)
-                  cg[ice.Offset(m, icef::theta)] = in ? 1 : ice.rho_tiny;
+                  cg[ice.Offset(m, icef::theta)]    = in ? 1 : ice.rho_tiny;
                 }
               }
             }
@@ -122,8 +122,8 @@ void IceBoundaryFaceVelocities(IceSolver &ice)
 {
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) {
-      const bool touches = s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d];
-      const IceFaceBC &bc = ice.bc[d][s];
+      const bool       touches = s == 0 ? ice.xs[d] == 0 : ice.xs[d] + ice.xm[d] == ice.cells[d];
+      const IceFaceBC &bc      = ice.bc[d][s];
       if (!touches || bc.type == IceBC::Outflow) continue;
       PetscInt lo[3], hi[3];
       for (PetscInt e = 0; e < 3; ++e) {

@@ -32,8 +32,9 @@ void IceCheckpointValues(IceSolver &ice, CheckpointValues &values)
   values.PerRank("boundary_work", &f.work);
   values.PerRank("boundary_impulse", f.impulse, 3);
   values.PerRank("boundary_face_mass", &f.face_mass[0][0], 6);
-  static const char *const names[IceSolver::kEnergyDiagnostics] = {"drag_energy_change", "solid_pressure_work", "gas_interface_work", "advection_energy_change", "fallback_energy_change", "trace_energy_change", "equilibration_energy_change", "exchange_energy_change", "exchange_fallback_energy", "solid_cell_energy_transfer"};
-  const auto diagnostics = ice.EnergyDiagnostics();
+  static const char *const names[IceSolver::kEnergyDiagnostics] = {"drag_energy_change",  "solid_pressure_work",         "gas_interface_work",     "advection_energy_change",  "fallback_energy_change",
+                                                                   "trace_energy_change", "equilibration_energy_change", "exchange_energy_change", "exchange_fallback_energy", "solid_cell_energy_transfer"};
+  const auto               diagnostics                          = ice.EnergyDiagnostics();
   for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) values.PerRank(names[k], diagnostics[k]);
 }
 

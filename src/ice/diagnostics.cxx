@@ -20,7 +20,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
         pmax                 = PetscMax(pmax, c[ice.CellOffset(icef::press)]);
         for (PetscInt m = 0; m < ice.ngas; ++m) {
-          const PetscReal M = c[ice.Offset(m, icef::rho)] * V;
+          const PetscReal M  = c[ice.Offset(m, icef::rho)] * V;
           PetscReal       u2 = 0;
           local[0] += M;
           for (PetscInt d = 0; d < ice.dim; ++d) {
@@ -47,8 +47,8 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
 // |u_L|^2/2) (the cells' view of the solids too), between the sources and the advection.
 static PetscReal LagrangianEnergy(const IceSolver &ice, const PetscScalar *a)
 {
-  PetscReal      sum = 0, cv[kIceMaxMaterials];
-  bool           cold[kIceMaxMaterials]; // IceSources leaves e_cold,L / c_v in energy_L
+  PetscReal       sum = 0, cv[kIceMaxMaterials];
+  bool            cold[kIceMaxMaterials]; // IceSources leaves e_cold,L / c_v in energy_L
   const PetscReal V = ice.CellVolume();
   for (PetscInt m = 0; m < ice.nmat; ++m) {
     cv[m]   = ice.materials[m].eos->cv;
@@ -135,9 +135,9 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
-        const PetscInt     idx = ice.LocalIndex(i, j, k);
-        const PetscScalar *c   = a + idx * S;
-        const PetscInt     ijk[3] = {i, j, k};
+        const PetscInt     idx          = ice.LocalIndex(i, j, k);
+        const PetscScalar *c            = a + idx * S;
+        const PetscInt     ijk[3]       = {i, j, k};
         PetscReal          p_face[3][2] = {{0, 0}, {0, 0}, {0, 0}}, q_face[3][2] = {{0, 0}, {0, 0}, {0, 0}};
         for (PetscInt d = 0; d < ice.dim; ++d) {
           p_face[d][0] = ice.face_pressure[d][idx];
@@ -156,9 +156,9 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
               if (here) work -= (side ? 1 : -1) * dw;
               if (!side && ijk[d] > 0 && booked(a + L * S, m) != here) ice.gas_interface_work += (here ? 1 : -1) * V * dw; // the lower face: every interior face once
             }
-          const GasEOS   &eos = *ice.materials[m].eos;
-          const bool      cold = eos.HasColdEnergy(); // IceSources leaves e_cold,L / c_v in energy_L
-          PetscReal       u2 = 0, uL2 = 0, converted = 0;
+          const GasEOS &eos  = *ice.materials[m].eos;
+          const bool    cold = eos.HasColdEnergy(); // IceSources leaves e_cold,L / c_v in energy_L
+          PetscReal     u2 = 0, uL2 = 0, converted = 0;
           for (PetscInt d = 0; d < ice.dim; ++d) {
             u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
             uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
@@ -203,7 +203,7 @@ PetscErrorCode IceBudgetFaces(IceSolver &ice)
         for (PetscInt j = lo[1]; j < hi[1]; ++j)
           for (PetscInt i = lo[0]; i < hi[0]; ++i) {
             const PetscInt  idx = ice.LocalIndex(i, j, k), ghost = s ? idx + ice.lstride[d] : idx - ice.lstride[d];
-            const PetscInt  L = s ? idx : ghost, R = s ? ghost : idx; // the face's cells; its velocity is stored with R
+            const PetscInt  L = s ? idx : ghost, R = s ? ghost : idx;                  // the face's cells; its velocity is stored with R
             const PetscReal p = ice.face_pressure[d][R], q = ice.face_viscosity[d][R]; // (L, R)
             for (PetscInt m = 0; m < n; ++m) {
               const PetscReal theta = a[idx * S + ice.Offset(m, icef::theta)], p_felt = m < ice.ngas ? p + q : p;
@@ -227,9 +227,9 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
   const PetscScalar *a;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
-  const PetscReal V = ice.CellVolume();
+  const PetscReal V     = ice.CellVolume();
   const bool      total = ice.advect_total_energy;
-  PetscReal       out = 0; // the energy this advection carried out
+  PetscReal       out   = 0; // the energy this advection carried out
   for (PetscInt m = 0; m < ice.ngas; ++m) {
     PetscReal *f = ice.boundary_flux[m]; // density, momentum (dim), energy (or temperature) over c_v, ...
     ice.boundary.mass += V * f[0];
@@ -258,8 +258,8 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
         for (PetscInt m = 0; m < ice.ngas; ++m) {
-          const GasEOS   &eos = *ice.materials[m].eos;
-          PetscReal       u2 = 0, uL2 = 0;
+          const GasEOS &eos = *ice.materials[m].eos;
+          PetscReal     u2 = 0, uL2 = 0;
           for (PetscInt d = 0; d < ice.dim; ++d) {
             u2 += c[ice.Offset(m, icef::vel + d)] * c[ice.Offset(m, icef::vel + d)];
             uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
@@ -335,8 +335,6 @@ PetscErrorCode IceWriteProfile(IceSolver &ice, const std::string &file, PetscRea
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-
-
 PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal> &solid_fraction)
 {
   PetscScalar *a;
@@ -349,7 +347,7 @@ PetscErrorCode IceMakeRoomForSolids(IceSolver &ice, const std::vector<PetscReal>
         const PetscReal keep = PetscMax(1 - solid_fraction[idx], 0.0);
         PetscScalar    *c    = a + idx * ice.stride;
         for (PetscInt m = 0; m < ice.ngas; ++m) {
-          const PetscReal floor = ice.rho_tiny / c[ice.Offset(m, icef::spvol)];
+          const PetscReal floor       = ice.rho_tiny / c[ice.Offset(m, icef::spvol)];
           c[ice.Offset(m, icef::rho)] = PetscMax(c[ice.Offset(m, icef::rho)] * keep, floor);
         }
       }

@@ -93,7 +93,7 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
         if (cold[m]) e[m] = ice.materials[m].eos->InternalEnergy(1 / c[ice.Offset(m, icef::spvol)], c[ice.Offset(m, icef::temp)]);
       }
     bool have_point = false; // point[m]: the EOS at the final rho_micro of the materials without a cold energy
-    if (n == 1) { // one material fills the cell: no solve
+    if (n == 1) {            // one material fills the cell: no solve
       rho_micro[0] = c[ice.Offset(0, icef::rho)];
       if (cold[0]) c[ice.Offset(0, icef::temp)] = (e[0] - ice.materials[0].eos->ColdEnergy(rho_micro[0])) / ice.materials[0].eos->cv;
       p = ice.materials[0].eos->Evaluate(rho_micro[0], c[ice.Offset(0, icef::temp)]).pressure;
@@ -130,10 +130,11 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
           }
         }
         if (!converged) {
-          PetscInt i = idx % ice.gxm[0] + ice.gxs[0], j = (idx / ice.gxm[0]) % ice.gxm[1] + ice.gxs[1], k = idx / (ice.gxm[0] * ice.gxm[1]) + ice.gxs[2];
+          PetscInt    i = idx % ice.gxm[0] + ice.gxs[0], j = (idx / ice.gxm[0]) % ice.gxm[1] + ice.gxs[1], k = idx / (ice.gxm[0] * ice.gxm[1]) + ice.gxs[2];
           std::string state;
           for (PetscInt m = 0; m < n; ++m) state += " " + ice.materials[m].name + ": rho " + std::to_string(c[ice.Offset(m, icef::rho)]) + " kg/m^3, T " + std::to_string(c[ice.Offset(m, icef::temp)]) + " K;";
-          SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the equilibration pressure of cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") did not converge (Newton and bisection on [1e-6, 1e15] Pa); state:%s", ice.step, i, j, k, state.c_str());
+          SETERRQ(PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+                  "Gas step %" PetscInt_FMT ": the equilibration pressure of cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") did not converge (Newton and bisection on [1e-6, 1e15] Pa); state:%s", ice.step, i, j, k, state.c_str());
         }
       }
       have_point = std::isfinite(VolumeResidual(ice, c, scale, p, cold, e, rho_micro, nullptr, point));
@@ -142,10 +143,10 @@ PetscErrorCode IceEquilibrate(IceSolver &ice)
     for (PetscInt m = 0; m < n; ++m) {
       const GasEOS &eos = *ice.materials[m].eos;
       if (cold[m]) c[ice.Offset(m, icef::temp)] = (e[m] - eos.ColdEnergy(rho_micro[m])) / eos.cv;
-      const PetscReal   T   = c[ice.Offset(m, icef::temp)];
-      const GasEOSPoint s   = have_point && !cold[m] ? point[m] : eos.Evaluate(rho_micro[m], T);
-      const PetscReal   c2  = s.dp_drho + T * s.dp_dT * s.dp_dT / (rho_micro[m] * rho_micro[m] * eos.cv);
-      const PetscReal   theta = scale * c[ice.Offset(m, icef::rho)] / rho_micro[m];
+      const PetscReal   T            = c[ice.Offset(m, icef::temp)];
+      const GasEOSPoint s            = have_point && !cold[m] ? point[m] : eos.Evaluate(rho_micro[m], T);
+      const PetscReal   c2           = s.dp_drho + T * s.dp_dT * s.dp_dT / (rho_micro[m] * rho_micro[m] * eos.cv);
+      const PetscReal   theta        = scale * c[ice.Offset(m, icef::rho)] / rho_micro[m];
       c[ice.Offset(m, icef::theta)]  = theta;
       c[ice.Offset(m, icef::spvol)]  = 1 / rho_micro[m];
       c[ice.Offset(m, icef::kappa)]  = 1 / (rho_micro[m] * c2);

@@ -18,12 +18,11 @@
 
 namespace burst {
 
-
 template <int N>
 static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
 {
-  const PetscInt S = ice.stride, dim = ice.dim;
-  PetscReal      beta[kIceMaxMaterials][kIceMaxMaterials], q[kIceMaxMaterials];
+  const PetscInt    S = ice.stride, dim = ice.dim;
+  PetscReal         beta[kIceMaxMaterials][kIceMaxMaterials], q[kIceMaxMaterials];
   ExchangeMatrix<N> E;
   PetscBool         info = PETSC_FALSE; // -info: the fallbacks' diagnostics (below) are computed only then
   PetscCall(PetscInfoEnabled(DM_CLASSID, &info));
@@ -71,18 +70,23 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           if (T_L > 0) continue;
           // the drag did not give back what the pressure gradient gave (sources.cxx): the
           // temperature form instead, counted
-          const GasEOS   &eos         = *ice.materials[m].eos;
-          const PetscReal T_before    = T_L, cold_before = eos.HasColdEnergy() ? eos.cv * c[ice.Offset(m, icef::energy_L)] : 0;
-          PetscReal       cold_L      = 0;
-          T_L = IceTemperatureForm(ice, c, ice.LocalIndex(i, j, k), m, &cold_L);
+          const GasEOS   &eos      = *ice.materials[m].eos;
+          const PetscReal T_before = T_L, cold_before = eos.HasColdEnergy() ? eos.cv * c[ice.Offset(m, icef::energy_L)] : 0;
+          PetscReal       cold_L = 0;
+          T_L                    = IceTemperatureForm(ice, c, ice.LocalIndex(i, j, k), m, &cold_L);
           if (eos.HasColdEnergy()) c[ice.Offset(m, icef::energy_L)] = cold_L / eos.cv;
           IceCountFallback(ice, c, ice.LocalIndex(i, j, k));
           ++ice.energy_fallbacks_exchange;
           PetscReal solid = 0;
           for (PetscInt l = ice.ngas; l < N; ++l) solid += c[ice.Offset(l, icef::theta)];
-          PetscCall(PetscInfo(nullptr, "Gas step %" PetscInt_FMT ": exchange fallback of %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): volume fraction %g, solids' %g; temperature %g K after the drag heat %g J/kg; the pressure source's work carried at the centre-of-mass velocity %g J/kg, c_v T %g J/kg\n", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)c[ice.Offset(m, icef::theta)], (double)solid, (double)T_before, (double)heat[m], (double)carried[m], (double)(eos.cv * c[ice.Offset(m, icef::temp)])));
+          PetscCall(PetscInfo(nullptr,
+                              "Gas step %" PetscInt_FMT ": exchange fallback of %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT
+                              "): volume fraction %g, solids' %g; temperature %g K after the drag heat %g J/kg; the pressure source's work carried at the centre-of-mass velocity %g J/kg, c_v T %g J/kg\n",
+                              ice.step, ice.materials[m].name.c_str(), i, j, k, (double)c[ice.Offset(m, icef::theta)], (double)solid, (double)T_before, (double)heat[m], (double)carried[m], (double)(eos.cv * c[ice.Offset(m, icef::temp)])));
           ice.exchange_fallback_energy += V * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (T_L - T_before) + (eos.HasColdEnergy() ? cold_L - cold_before : 0));
-          PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k, (double)T_L);
+          PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+                     "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k,
+                     (double)T_L);
         }
         for (PetscInt m = 0; m < N; ++m)
           for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;

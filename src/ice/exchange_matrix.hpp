@@ -14,7 +14,7 @@ template <int N>
 struct ExchangeMatrix {
   static constexpr PetscInt n = N;
   PetscReal                 E[N][N];
-  void      Factor(const PetscReal beta[kIceMaxMaterials][kIceMaxMaterials])
+  void                      Factor(const PetscReal beta[kIceMaxMaterials][kIceMaxMaterials])
   {
     for (PetscInt m = 0; m < n; ++m) {
       PetscReal sum = 0;

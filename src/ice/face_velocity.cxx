@@ -15,9 +15,9 @@ namespace burst {
 template <int N>
 static void FaceExchange(IceSolver &ice, const PetscScalar *a, PetscInt d, PetscInt idx)
 {
-  const PetscInt S = ice.stride;
-  PetscReal     *u = &ice.face_vel[d][idx * N], *ustar = &ice.face_vel_star[d][idx * N];
-  PetscReal     *vbar = &ice.face_spvol[d][idx * N], *veff = &ice.face_spvol_eff[d][idx * N];
+  const PetscInt     S = ice.stride;
+  PetscReal         *u = &ice.face_vel[d][idx * N], *ustar = &ice.face_vel_star[d][idx * N];
+  PetscReal         *vbar = &ice.face_spvol[d][idx * N], *veff = &ice.face_spvol_eff[d][idx * N];
   const PetscScalar *cL = a + (idx - ice.lstride[d]) * S, *cR = a + idx * S;
   PetscReal          beta[kIceMaxMaterials][kIceMaxMaterials];
   for (PetscInt m = 0; m < N; ++m)
@@ -63,7 +63,7 @@ PetscErrorCode IceFaceVelocities(IceSolver &ice)
           for (PetscInt m = 0; m < n; ++m) {
             const PetscReal rL = cL[ice.Offset(m, icef::rho)], rR = cR[ice.Offset(m, icef::rho)];
             const PetscReal vL = cL[ice.Offset(m, icef::spvol)], vR = cR[ice.Offset(m, icef::spvol)];
-            const PetscReal vbar = 2 * vL * vR / (vL + vR);
+            const PetscReal vbar              = 2 * vL * vR / (vL + vR);
             ice.face_spvol[d][idx * n + m]    = vbar;
             ice.face_vel_star[d][idx * n + m] = (rL * cL[ice.Offset(m, icef::vel + d)] + rR * cR[ice.Offset(m, icef::vel + d)]) / (rL + rR) - dt_dx * vbar * dp + ice.dt * ice.gravity[d];
           }

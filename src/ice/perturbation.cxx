@@ -26,13 +26,14 @@ static const char *const IcePerturbationNames[] = {"none", "acoustic", "entropy"
 // (rho, T) on the isentrope through (rho, T) at pressure p0 moved to pressure p1 (RK4 in p).
 static void Isentrope(const GasEOS &eos, PetscReal p0, PetscReal p1, PetscReal *rho, PetscReal *T)
 {
-  const int nsteps = 16;
-  const PetscReal dp = (p1 - p0) / nsteps;
+  const int       nsteps = 16;
+  const PetscReal dp     = (p1 - p0) / nsteps;
+
   auto rhs = [&](PetscReal r, PetscReal t, PetscReal *dr, PetscReal *dt) {
     const GasEOSPoint s  = eos.Evaluate(r, t);
     const PetscReal   c2 = eos.SoundSpeed2(r, t);
-    *dr = 1 / c2;
-    *dt = t * s.dp_dT / (r * r * eos.cv * c2);
+    *dr                  = 1 / c2;
+    *dt                  = t * s.dp_dT / (r * r * eos.cv * c2);
   };
   PetscReal r = *rho, t = *T;
   for (int n = 0; n < nsteps; ++n) {
@@ -50,13 +51,16 @@ static void Isentrope(const GasEOS &eos, PetscReal p0, PetscReal p1, PetscReal *
 
 PetscErrorCode IceApplyPerturbation(IceSolver &ice)
 {
-  int       kind = 0;
+  int       kind      = 0;
   PetscReal amplitude = 1e-3, width = -1, center[3] = {0, 0, 0};
   PetscInt  ncenter = 3;
   PetscBool set;
   PetscFunctionBeginUser;
   PetscOptionsBegin(ice.comm, "", "Gas (ICE) initial perturbation", "ICE");
-  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_perturbation", "Smooth Gaussian perturbation of the uniform initial gas state: none, acoustic (isentropic pressure pulse at rest), entropy (temperature spot at uniform pressure), checkerboard (two-cell pressure mode under a Gaussian envelope)", IcePerturbationNames, 4, &kind, nullptr));
+  PetscCall(
+    OptionsChoice(PetscOptionsObject, "-ice_perturbation",
+                  "Smooth Gaussian perturbation of the uniform initial gas state: none, acoustic (isentropic pressure pulse at rest), entropy (temperature spot at uniform pressure), checkerboard (two-cell pressure mode under a Gaussian envelope)",
+                  IcePerturbationNames, 4, &kind, nullptr));
   PetscCall(PetscOptionsReal("-ice_perturbation_amplitude", "Relative amplitude A of the perturbation (pressure for acoustic, temperature for entropy)", "", amplitude, &amplitude, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_perturbation_amplitude", amplitude, -0.5, 0.5, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_perturbation_width", "Gaussian width w (m) of the perturbation, exp(-r^2/(2 w^2)), > 0", "", width, &width, nullptr));
@@ -79,14 +83,14 @@ PetscErrorCode IceApplyPerturbation(IceSolver &ice)
           const PetscReal x = ice.lower[d] + (ijk[d] + 0.5) * ice.h[d];
           r2 += (x - center[d]) * (x - center[d]);
         }
-        const PetscReal g = std::exp(-0.5 * r2 / (width * width));
+        const PetscReal g        = std::exp(-0.5 * r2 / (width * width));
         PetscReal       pressure = 0, dominant = -1;
         for (PetscInt m = 0; m < ice.nmat; ++m) {
           const GasEOS   &eos   = *ice.materials[m].eos;
           const PetscReal theta = c[ice.Offset(m, icef::theta)];
           PetscReal       rho = 1 / c[ice.Offset(m, icef::spvol)], T = c[ice.Offset(m, icef::temp)];
-          const PetscReal p0  = eos.Evaluate(rho, T).pressure;
-          PetscReal       p   = p0;
+          const PetscReal p0 = eos.Evaluate(rho, T).pressure;
+          PetscReal       p  = p0;
           if (kind == (int)IcePerturbation::Acoustic || kind == (int)IcePerturbation::Checkerboard) {
             const PetscReal sign = kind == (int)IcePerturbation::Checkerboard && (i + j + k) % 2 ? -1 : 1;
             p                    = p0 * (1 + sign * amplitude * g);

@@ -33,7 +33,7 @@ PetscErrorCode IceUpdatePressure(IceSolver &ice)
           PetscReal created = 0;
           if (ice.has_mass_source)
             for (PetscInt m = 0; m < ice.nmat; ++m) created += ice.mass_source[idx * ice.nmat + m] * c[ice.Offset(m, icef::spvol)];
-          const PetscReal p = PetscMax(p_eq + (created - ice.work_outflow[idx]) / c[ice.CellOffset(icef::sum_kappa)], 1e-12); // ice.md 7.3
+          const PetscReal p               = PetscMax(p_eq + (created - ice.work_outflow[idx]) / c[ice.CellOffset(icef::sum_kappa)], 1e-12); // ice.md 7.3
           c[ice.CellOffset(icef::press)]  = p;
           c[ice.CellOffset(icef::dp_dil)] = p - p_eq;
         }

@@ -24,7 +24,7 @@ namespace burst {
 static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, PetscReal *dominance)
 {
   const PetscInt  S = ice.stride, n = ice.nmat, dim = ice.dim;
-  const PetscReal V = ice.CellVolume();
+  const PetscReal V   = ice.CellVolume();
   PetscReal       dom = 0;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_p_assemble, 0, 0, 0, 0));
@@ -38,14 +38,14 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, Petsc
         PetscScalar    vals[7];
         PetscInt       nc   = 1;
         PetscReal      diag = V * a[idx * S + ice.CellOffset(icef::sum_kappa)], offsum = 0;
-        cols[0]             = row;
+        cols[0]               = row;
         const PetscInt ijk[3] = {i, j, k};
         for (PetscInt d = 0; d < dim; ++d)
           for (int side = -1; side <= 1; side += 2) {
             const PetscInt nb      = ijk[d] + side;
             const bool     outside = nb < 0 || nb >= ice.cells[d];
             if (outside && !(ice.bc[d][side > 0].type == IceBC::Outflow && ice.bc[d][side > 0].pressure > 0)) continue; // Neumann domain face
-            const PetscInt face = side < 0 ? idx : idx + ice.lstride[d]; // lower face of the upper cell
+            const PetscInt face = side < 0 ? idx : idx + ice.lstride[d];                                                // lower face of the upper cell
             const PetscInt L = face - ice.lstride[d], R = face;
             PetscReal      sum = 0;
             for (PetscInt m = 0; m < n; ++m) {
@@ -65,7 +65,7 @@ static PetscErrorCode AssembleMatrix(IceSolver &ice, const PetscScalar *a, Petsc
             vals[nc++] = -coef;
           }
         vals[0] = diag;
-        dom = diag > 0 ? PetscMax(dom, offsum / diag) : 1;
+        dom     = diag > 0 ? PetscMax(dom, offsum / diag) : 1;
         PetscCall(MatSetValuesStencil(ice.A, 1, &row, nc, cols, vals, INSERT_VALUES));
       }
   PetscCall(MatAssemblyBegin(ice.A, MAT_FINAL_ASSEMBLY));
@@ -90,9 +90,9 @@ static PetscErrorCode SolvePressure(IceSolver &ice, KSP ksp, KSPConvergedReason 
 
 PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
 {
-  PetscScalar   *a;
-  const PetscInt S = ice.stride, n = ice.nmat, dim = ice.dim, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
-  const PetscReal V = ice.CellVolume();
+  PetscScalar            *a;
+  const PetscInt          S = ice.stride, n = ice.nmat, dim = ice.dim, nlocal = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
+  const PetscReal         V     = ice.CellVolume();
   std::vector<PetscReal> &old_p = ice.work_pressure;
   old_p.resize(nlocal);
   PetscFunctionBeginUser;
@@ -114,13 +114,13 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
     for (PetscInt kk = ice.xs[2]; kk < ice.xs[2] + ice.xm[2]; ++kk)
       for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
         for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i, ++row) {
-          const PetscInt     idx = ice.LocalIndex(i, j, kk);
-          const PetscScalar *c   = a + idx * S;
+          const PetscInt     idx     = ice.LocalIndex(i, j, kk);
+          const PetscScalar *c       = a + idx * S;
           PetscReal          created = 0; // volume made by mass conversion, relative to V
           if (ice.has_mass_source)
             for (PetscInt m = 0; m < ice.nmat; ++m) created += ice.mass_source[idx * ice.nmat + m] * c[ice.Offset(m, icef::spvol)];
-          r[row] = -V * c[ice.CellOffset(icef::sum_kappa)] * (c[ice.CellOffset(icef::press)] - c[ice.CellOffset(icef::press_eq)]) + V * (created - ice.work_outflow[idx]);
-          local_max              = PetscMax(local_max, std::fabs(r[row]) / V);
+          r[row]    = -V * c[ice.CellOffset(icef::sum_kappa)] * (c[ice.CellOffset(icef::press)] - c[ice.CellOffset(icef::press_eq)]) + V * (created - ice.work_outflow[idx]);
+          local_max = PetscMax(local_max, std::fabs(r[row]) / V);
         }
     PetscCall(VecRestoreArray(ice.rhs, &r));
     PetscCallMPI(MPI_Allreduce(&local_max, &residual, 1, MPIU_REAL, MPI_MAX, ice.comm));
@@ -129,8 +129,11 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
       PetscCall(IceRestoreLocalArray(ice, &a));
       break;
     }
-    PetscCheck(k < ice.outer_max_iterations, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the semi-implicit pressure did not converge in %" PetscInt_FMT " outer iterations (max |residual|/V = %g, tolerance %g); raise -ice_outer_max_iterations or -ice_outer_tolerance, or reduce -ice_cfl", ice.step, ice.outer_max_iterations, (double)residual, (double)ice.outer_tolerance);
-    PetscCheck(residual < 100 * smallest || smallest == 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the semi-implicit pressure diverges (outer iteration %" PetscInt_FMT ": max |residual|/V = %g, smallest so far %g); reduce -ice_cfl", ice.step, k, (double)residual, (double)smallest);
+    PetscCheck(k < ice.outer_max_iterations, ice.comm, PETSC_ERR_NOT_CONVERGED,
+               "Gas step %" PetscInt_FMT ": the semi-implicit pressure did not converge in %" PetscInt_FMT " outer iterations (max |residual|/V = %g, tolerance %g); raise -ice_outer_max_iterations or -ice_outer_tolerance, or reduce -ice_cfl",
+               ice.step, ice.outer_max_iterations, (double)residual, (double)ice.outer_tolerance);
+    PetscCheck(residual < 100 * smallest || smallest == 0, ice.comm, PETSC_ERR_NOT_CONVERGED,
+               "Gas step %" PetscInt_FMT ": the semi-implicit pressure diverges (outer iteration %" PetscInt_FMT ": max |residual|/V = %g, smallest so far %g); reduce -ice_cfl", ice.step, k, (double)residual, (double)smallest);
     smallest = PetscMin(smallest, residual);
     // solve A dP = r
     PetscReal dom;
@@ -171,7 +174,8 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
       PetscCall(SolvePressure(ice, ksp, &reason, &its));
     }
     if (use_jacobi) ice.jacobi_solves += 1;
-    PetscCheck(reason > 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the pressure solve (-ice_pressure_ksp_type, -ice_pressure_pc_type) did not converge: %s after %" PetscInt_FMT " iterations", ice.step, KSPConvergedReasons[reason], its);
+    PetscCheck(reason > 0, ice.comm, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the pressure solve (-ice_pressure_ksp_type, -ice_pressure_pc_type) did not converge: %s after %" PetscInt_FMT " iterations", ice.step,
+               KSPConvergedReasons[reason], its);
     ice.ksp_iterations += its;
     ice.ksp_iterations_total += its;
     ice.pressure_solves += 1;
@@ -212,7 +216,7 @@ PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice)
   // clamp (ice.md 7.3) and the dilatational change
   PetscCall(IceGetLocalArray(ice, &a));
   for (PetscInt idx = 0; idx < nlocal; ++idx) {
-    PetscScalar *c = a + idx * S;
+    PetscScalar *c                  = a + idx * S;
     c[ice.CellOffset(icef::press)]  = PetscMax(c[ice.CellOffset(icef::press)], 1e-12);
     c[ice.CellOffset(icef::dp_dil)] = c[ice.CellOffset(icef::press)] - c[ice.CellOffset(icef::press_eq)];
   }

@@ -11,14 +11,14 @@
 
 namespace burst {
 
-const char *const IceBCNames[]             = {"wall", "symmetry", "outflow", "inflow"};
-const char *const IcePressureSolverNames[] = {"explicit", "semi_implicit"};
+const char *const IceBCNames[]                = {"wall", "symmetry", "outflow", "inflow"};
+const char *const IcePressureSolverNames[]    = {"explicit", "semi_implicit"};
 const char *const IceEquilibrationFormNames[] = {"mass", "normalized"};
-const char *const RiemannShapeNames[]      = {"planar", "cylinder", "sphere"};
+const char *const RiemannShapeNames[]         = {"planar", "cylinder", "sphere"};
 
 // The Riemann (two-state) initial condition, ice.md 6.1-6.2.
 struct RiemannSetup {
-  PetscBool    set = PETSC_FALSE;
+  PetscBool    set     = PETSC_FALSE;
   PetscReal    left[3] = {1, 0, 1}, right[3] = {0.125, 0, 0.1}; // rho, u, p
   PetscReal    position = 0.5, center[3] = {0, 0, 0};
   PetscInt     left_material = 0, right_material = 0;
@@ -65,7 +65,7 @@ static PetscErrorCode ReadExchange(IceSolver &ice, PetscOptionItems *PetscOption
 // half-width in 2-D, a disc in 3-D) take the jet's state, the others the face's (the coflow; IceInflowAt).
 static PetscErrorCode ReadInflowJet(IceSolver &ice, PetscOptionItems *PetscOptionsObject, PetscInt d, int s, const char face_opt[], const char inflow_opt[])
 {
-  IceFaceBC        &bc = ice.bc[d][s];
+  IceFaceBC        &bc      = ice.bc[d][s];
   const std::string jet_opt = std::string(inflow_opt) + "_jet", center_opt = jet_opt + "_center", radius_opt = jet_opt + "_radius", material_opt = jet_opt + "_material";
   PetscReal         state[5] = {0, 0, 0, 0, 0}, center[3] = {0, 0, 0}, radius = 0;
   PetscInt          ns = 5, nc = 3;
@@ -73,9 +73,10 @@ static PetscErrorCode ReadInflowJet(IceSolver &ice, PetscOptionItems *PetscOptio
   char              buf[256];
   PetscFunctionBeginUser;
   for (PetscInt e = 0; e < ice.dim; ++e) center[e] = ice.lower[e] + 0.5 * ice.cells[e] * ice.h[e];
-  const std::string jet_help = "Jet on this inflow face: density (kg/m^3), velocity (m/s, dim values), temperature (K) in the face cells whose centre lies within " + radius_opt + " of " + center_opt + "; the face's other cells take " + inflow_opt + " (the coflow). Default: no jet";
-  const std::string center_help = "Jet centre (m, dim values; the component normal to the face is not used). Default: the face's centre";
-  const std::string radius_help = "Jet radius (m, > 0; required with " + jet_opt + "): in 2-D the half-width of the slot along the face, in 3-D the radius of the disc on the face";
+  const std::string jet_help = "Jet on this inflow face: density (kg/m^3), velocity (m/s, dim values), temperature (K) in the face cells whose centre lies within " + radius_opt + " of " + center_opt + "; the face's other cells take " + inflow_opt +
+                               " (the coflow). Default: no jet";
+  const std::string center_help   = "Jet centre (m, dim values; the component normal to the face is not used). Default: the face's centre";
+  const std::string radius_help   = "Jet radius (m, > 0; required with " + jet_opt + "): in 2-D the half-width of the slot along the face, in 3-D the radius of the disc on the face";
   const std::string material_help = "Jet: the gas material that flows in the jet (default: the face's, " + std::string(inflow_opt) + "_material)";
   PetscCall(PetscOptionsRealArray(jet_opt.c_str(), jet_help.c_str(), "", state, &ns, &jet_set));
   PetscCall(PetscOptionsRealArray(center_opt.c_str(), center_help.c_str(), "", center, &nc, &center_set));
@@ -107,7 +108,8 @@ static PetscErrorCode ReadInflowJet(IceSolver &ice, PetscOptionItems *PetscOptio
   for (PetscInt k = 0; k < n[2] && !covered; ++k)
     for (PetscInt j = 0; j < n[1] && !covered; ++j)
       for (PetscInt i = 0; i < n[0] && !covered; ++i) covered += &IceInflowAt(ice, d, s, i, j, k) == &bc.jet;
-  PetscCheck(covered, ice.comm, PETSC_ERR_USER_INPUT, "Option %s = %g m: the jet about %s covers no cell centre of the face (cells %g m wide along it); widen it or move the centre onto the face", radius_opt.c_str(), (double)radius, center_opt.c_str(), (double)ice.h[d == 0 ? 1 : 0]);
+  PetscCheck(covered, ice.comm, PETSC_ERR_USER_INPUT, "Option %s = %g m: the jet about %s covers no cell centre of the face (cells %g m wide along it); widen it or move the centre onto the face", radius_opt.c_str(), (double)radius,
+             center_opt.c_str(), (double)ice.h[d == 0 ? 1 : 0]);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -135,7 +137,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
       for (PetscInt j = 0; j < nsolid; ++j)
         if (!std::strcmp(names[i], solids[j])) clash = names[i];
     for (PetscInt j = 0; j < nsolid; ++j) PetscCall(PetscFree(solids[j]));
-    PetscCheck(clash.empty(), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s', a solid of -materials: -ice_materials names the gases only; a solid meets the gas through the coupling, which gives it a cell state of its own", clash.c_str());
+    PetscCheck(clash.empty(), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s', a solid of -materials: -ice_materials names the gases only; a solid meets the gas through the coupling, which gives it a cell state of its own",
+               clash.c_str());
   }
   for (PetscInt i = 0; i < n; ++i) {
     for (PetscInt j = 0; j < i; ++j) PetscCheck(std::strcmp(names[i], names[j]), ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_materials lists '%s' twice", names[i]);
@@ -147,17 +150,21 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   ice.nmat = n;
 
   choice = (int)ice.equilibration_form;
-  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_equilibration", "In cells that hold a solid: mass (every volume from its mass, sum rho_m/rho_micro_m(p) = 1) or normalized (the volumes at the old pressure, the gases' from their transported specific volume, rescaled to fill the cell, so an overfill does not become pressure)", IceEquilibrationFormNames, 2, &choice, nullptr));
+  PetscCall(OptionsChoice(PetscOptionsObject, "-ice_equilibration",
+                          "In cells that hold a solid: mass (every volume from its mass, sum rho_m/rho_micro_m(p) = 1) or normalized (the volumes at the old pressure, the gases' from their transported specific volume, rescaled to fill the cell, so "
+                          "an overfill does not become pressure)",
+                          IceEquilibrationFormNames, 2, &choice, nullptr));
   ice.equilibration_form = (IceEquilibrationForm)choice;
-  choice = (int)ice.pressure_solver;
+  choice                 = (int)ice.pressure_solver;
   PetscCall(OptionsChoice(PetscOptionsObject, "-ice_pressure_solver", "Pressure update: explicit (ice.md 1.5) or semi_implicit (KSP on the cell DMDA, options under -ice_pressure_)", IcePressureSolverNames, 2, &choice, nullptr));
   ice.pressure_solver = (IcePressureSolver)choice;
   PetscCall(PetscOptionsInt("-ice_advection_order", "Advection: 1 (donor cell) or 2 (limited linear reconstruction, van Leer)", "", ice.advection_order, &ice.advection_order, nullptr));
   PetscCheck(ice.advection_order == 1 || ice.advection_order == 2, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_advection_order = %" PetscInt_FMT " is not supported: valid choices are 1 and 2", ice.advection_order);
   PetscCall(PetscOptionsBool("-ice_compatible_fluxes", "Second order: compatible fluxes for velocity, temperature and specific volume (VanderHeyden & Kashiwa 1998)", "", ice.compatible_fluxes, &ice.compatible_fluxes, nullptr));
-  PetscCall(PetscOptionsBool("-ice_conservative_energy", "Lagrangian energy from the work of the face pressures minus the kinetic energy gained (conserves total energy), instead of the reference's -p dV form", "", ice.conservative_energy, &ice.conservative_energy, nullptr));
+  PetscCall(PetscOptionsBool("-ice_conservative_energy", "Lagrangian energy from the work of the face pressures minus the kinetic energy gained (conserves total energy), instead of the reference's -p dV form", "", ice.conservative_energy,
+                             &ice.conservative_energy, nullptr));
   {
-    PetscInt  nv = 2;
+    PetscInt  nv   = 2;
     PetscReal v[2] = {ice.viscosity[0], ice.viscosity[1]};
     PetscCall(PetscOptionsRealArray("-ice_artificial_viscosity", "Shock viscosity c1,c2 (-, >= 0): q = rho (1 - psi)(c2 du^2 + c1 c |du|) on compressing faces, psi Christensen's limiter (viscosity.cxx); 0,0 off", "", v, &nv, &set));
     if (set) {
@@ -168,11 +175,21 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
       ice.viscosity[1] = v[1];
     }
   }
-  PetscCall(PetscOptionsBool("-ice_solid_cell_energy", "With -ice_conservative_energy and -ice_drag_heating: a gas in a cell that holds a solid gets its own compression work and the pressure source's work at the cell's centre-of-mass velocity (the drag holds it there); what its face work holds beyond those goes to the solids as heat, so that no gas there falls back to the temperature form (false: the face work's; doc/gas.md)", "", ice.solid_cell_energy, &ice.solid_cell_energy, nullptr));
-  PetscCall(PetscOptionsBool("-ice_mixed_cell_energy", "With -ice_conservative_energy: in a cell that holds several gases, each gets the kinetic energy of its own momentum source and its own compression work; what the cell's face work holds beyond those is shared by heat capacity (false: each gas gets the work of its own face fluxes)", "", ice.mixed_cell_energy, &ice.mixed_cell_energy, nullptr));
-  PetscCall(PetscOptionsBool("-ice_drag_heating", "With -ice_conservative_energy: the kinetic energy that the momentum exchange removes becomes heat of the cell's materials (false: dropped, as the reference does)", "", ice.drag_heating, &ice.drag_heating, nullptr));
-  PetscCall(PetscOptionsBool("-ice_advect_total_energy", "Advect total energy c_v T + |u|^2/2 instead of c_v T, so the kinetic energy the remap averages away becomes heat (the reference advects c_v T only)", "", ice.advect_total_energy, &ice.advect_total_energy, nullptr));
-  PetscCall(PetscOptionsReal("-ice_dual_energy_fraction", "With total-energy advection: where the internal energy left is below this fraction of the total, take the separately remapped internal energy instead (dual energy; counted in energy_fallbacks), in [0, 1)", "", ice.dual_energy_fraction, &ice.dual_energy_fraction, nullptr));
+  PetscCall(PetscOptionsBool("-ice_solid_cell_energy",
+                             "With -ice_conservative_energy and -ice_drag_heating: a gas in a cell that holds a solid gets its own compression work and the pressure source's work at the cell's centre-of-mass velocity (the drag holds it there); what "
+                             "its face work holds beyond those goes to the solids as heat, so that no gas there falls back to the temperature form (false: the face work's; doc/gas.md)",
+                             "", ice.solid_cell_energy, &ice.solid_cell_energy, nullptr));
+  PetscCall(PetscOptionsBool("-ice_mixed_cell_energy",
+                             "With -ice_conservative_energy: in a cell that holds several gases, each gets the kinetic energy of its own momentum source and its own compression work; what the cell's face work holds beyond those is shared by heat "
+                             "capacity (false: each gas gets the work of its own face fluxes)",
+                             "", ice.mixed_cell_energy, &ice.mixed_cell_energy, nullptr));
+  PetscCall(PetscOptionsBool("-ice_drag_heating", "With -ice_conservative_energy: the kinetic energy that the momentum exchange removes becomes heat of the cell's materials (false: dropped, as the reference does)", "", ice.drag_heating,
+                             &ice.drag_heating, nullptr));
+  PetscCall(PetscOptionsBool("-ice_advect_total_energy", "Advect total energy c_v T + |u|^2/2 instead of c_v T, so the kinetic energy the remap averages away becomes heat (the reference advects c_v T only)", "", ice.advect_total_energy,
+                             &ice.advect_total_energy, nullptr));
+  PetscCall(PetscOptionsReal("-ice_dual_energy_fraction",
+                             "With total-energy advection: where the internal energy left is below this fraction of the total, take the separately remapped internal energy instead (dual energy; counted in energy_fallbacks), in [0, 1)", "",
+                             ice.dual_energy_fraction, &ice.dual_energy_fraction, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_dual_energy_fraction", ice.dual_energy_fraction, 0, 1, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_cfl", "Gas Courant number: dt = cfl min_d h_d/(k c + |u_d|), in (0, 1]", "", ice.cfl, &ice.cfl, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_cfl", ice.cfl, 0, 1, PETSC_TRUE));
@@ -187,7 +204,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCall(CheckRange(ice.comm, "-ice_trace_fraction", ice.trace_fraction, 0, 1e-2, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_trace_mass", "A gas below this share of its cell's mass is a trace too, whatever its volume fraction (0: the volume fraction alone)", "", ice.trace_mass, &ice.trace_mass, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_trace_mass", ice.trace_mass, 0, 1e-3, PETSC_FALSE));
-  PetscCall(PetscOptionsReal("-ice_cfl_min_fraction", "A gas below this volume fraction in a cell (a pocket in a solid) limits the time step by its flow speed only, not its sound speed; 0 = every gas above the trace fraction by both, in [0, 0.5]", "", ice.cfl_min_fraction, &ice.cfl_min_fraction, nullptr));
+  PetscCall(PetscOptionsReal("-ice_cfl_min_fraction", "A gas below this volume fraction in a cell (a pocket in a solid) limits the time step by its flow speed only, not its sound speed; 0 = every gas above the trace fraction by both, in [0, 0.5]",
+                             "", ice.cfl_min_fraction, &ice.cfl_min_fraction, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_cfl_min_fraction", ice.cfl_min_fraction, 0, 0.5, PETSC_FALSE));
   PetscCall(PetscOptionsReal("-ice_outer_tolerance", "Semi-implicit: outer iterations stop when max_c |residual_c|/V < this (relative volume)", "", ice.outer_tolerance, &ice.outer_tolerance, nullptr));
   PetscCall(CheckRange(ice.comm, "-ice_outer_tolerance", ice.outer_tolerance, 0, 1, PETSC_TRUE));
@@ -195,21 +213,22 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
   PetscCheck(ice.outer_max_iterations >= 1, ice.comm, PETSC_ERR_USER_INPUT, "Option -ice_outer_max_iterations = %" PetscInt_FMT " is out of range: it must be >= 1", ice.outer_max_iterations);
 
   // Boundary conditions per domain face
-  const char *face_opt[3][2]    = {{"-ice_bc_xmin", "-ice_bc_xmax"}, {"-ice_bc_ymin", "-ice_bc_ymax"}, {"-ice_bc_zmin", "-ice_bc_zmax"}};
-  const char *inflow_opt[3][2]  = {{"-ice_inflow_xmin", "-ice_inflow_xmax"}, {"-ice_inflow_ymin", "-ice_inflow_ymax"}, {"-ice_inflow_zmin", "-ice_inflow_zmax"}};
-  const char *inflow_mat[3][2]  = {{"-ice_inflow_xmin_material", "-ice_inflow_xmax_material"}, {"-ice_inflow_ymin_material", "-ice_inflow_ymax_material"}, {"-ice_inflow_zmin_material", "-ice_inflow_zmax_material"}};
-  const char *outflow_p[3][2]   = {{"-ice_outflow_xmin_pressure", "-ice_outflow_xmax_pressure"}, {"-ice_outflow_ymin_pressure", "-ice_outflow_ymax_pressure"}, {"-ice_outflow_zmin_pressure", "-ice_outflow_zmax_pressure"}};
+  const char *face_opt[3][2]   = {{"-ice_bc_xmin", "-ice_bc_xmax"}, {"-ice_bc_ymin", "-ice_bc_ymax"}, {"-ice_bc_zmin", "-ice_bc_zmax"}};
+  const char *inflow_opt[3][2] = {{"-ice_inflow_xmin", "-ice_inflow_xmax"}, {"-ice_inflow_ymin", "-ice_inflow_ymax"}, {"-ice_inflow_zmin", "-ice_inflow_zmax"}};
+  const char *inflow_mat[3][2] = {{"-ice_inflow_xmin_material", "-ice_inflow_xmax_material"}, {"-ice_inflow_ymin_material", "-ice_inflow_ymax_material"}, {"-ice_inflow_zmin_material", "-ice_inflow_zmax_material"}};
+  const char *outflow_p[3][2]  = {{"-ice_outflow_xmin_pressure", "-ice_outflow_xmax_pressure"}, {"-ice_outflow_ymin_pressure", "-ice_outflow_ymax_pressure"}, {"-ice_outflow_zmin_pressure", "-ice_outflow_zmax_pressure"}};
   for (PetscInt d = 0; d < ice.dim; ++d)
     for (int s = 0; s < 2; ++s) {
       IceFaceBC &bc = ice.bc[d][s];
       choice        = (int)bc.type;
       PetscCall(OptionsChoice(PetscOptionsObject, face_opt[d][s], "Gas boundary condition on this face: wall (reflective), symmetry, outflow (zero gradient), inflow (prescribed state)", IceBCNames, 4, &choice, nullptr));
-      bc.type = (IceBC)choice;
+      bc.type            = (IceBC)choice;
       PetscReal state[5] = {0, 0, 0, 0, 0};
       PetscInt  ns       = 5;
       PetscCall(PetscOptionsRealArray(inflow_opt[d][s], "Inflow state: density (kg/m^3), velocity (m/s, dim values), temperature (K)", "", state, &ns, &set));
       if (bc.type == IceBC::Inflow) {
-        PetscCheck(set && ns == ice.dim + 2, ice.comm, PETSC_ERR_USER_INPUT, "Option %s inflow needs %s with %" PetscInt_FMT " values: density, velocity (%" PetscInt_FMT " components), temperature", face_opt[d][s], inflow_opt[d][s], ice.dim + 2, ice.dim);
+        PetscCheck(set && ns == ice.dim + 2, ice.comm, PETSC_ERR_USER_INPUT, "Option %s inflow needs %s with %" PetscInt_FMT " values: density, velocity (%" PetscInt_FMT " components), temperature", face_opt[d][s], inflow_opt[d][s], ice.dim + 2,
+                   ice.dim);
         PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[0], 0, PETSC_MAX_REAL, PETSC_TRUE));
         PetscCall(CheckRange(ice.comm, inflow_opt[d][s], state[ice.dim + 1], 0, PETSC_MAX_REAL, PETSC_TRUE));
         bc.inflow.state[0] = state[0];
@@ -220,7 +239,9 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
       if (set && ice.nmat) PetscCall(MaterialIndex(ice, inflow_mat[d][s], buf, &bc.inflow.material));
       PetscCall(ReadInflowJet(ice, PetscOptionsObject, d, s, face_opt[d][s], inflow_opt[d][s]));
       // An open face: the pressure drives the flow through it, and a semi-implicit run keeps its level
-      PetscCall(PetscOptionsReal(outflow_p[d][s], "Outflow: the far-field pressure that the face's ghost cells hold (Pa), >= 0; 0: zero gradient, as the other fields (a semi-implicit run with every face zero-gradient has no pressure level: it drifts)", "", bc.pressure, &bc.pressure, &set));
+      PetscCall(PetscOptionsReal(outflow_p[d][s],
+                                 "Outflow: the far-field pressure that the face's ghost cells hold (Pa), >= 0; 0: zero gradient, as the other fields (a semi-implicit run with every face zero-gradient has no pressure level: it drifts)", "",
+                                 bc.pressure, &bc.pressure, &set));
       if (set) {
         PetscCall(CheckRange(ice.comm, outflow_p[d][s], bc.pressure, 0, 1e12, PETSC_FALSE));
         PetscCheck(bc.type == IceBC::Outflow || bc.pressure == 0, ice.comm, PETSC_ERR_USER_INPUT, "Option %s needs %s outflow (it is %s)", outflow_p[d][s], face_opt[d][s], IceBCNames[(int)bc.type]);
@@ -234,7 +255,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
         ice.exchange_K[a][b] = a == b ? 0 : 1e15;
         ice.exchange_H[a][b] = a == b ? 0 : 1e10;
       }
-    PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_momentum", "Momentum exchange coefficients K_ij (kg/(m^3 s)), upper triangle in -ice_materials order, or one value for all pairs; <= 1e20 (default 1e15, ice.md 1.8)", 1e20, ice.exchange_K));
+    PetscCall(
+      ReadExchange(ice, PetscOptionsObject, "-ice_exchange_momentum", "Momentum exchange coefficients K_ij (kg/(m^3 s)), upper triangle in -ice_materials order, or one value for all pairs; <= 1e20 (default 1e15, ice.md 1.8)", 1e20, ice.exchange_K));
     PetscCall(ReadExchange(ice, PetscOptionsObject, "-ice_exchange_heat", "Heat exchange coefficients H_ij (W/(m^3 K)), upper triangle, or one value for all pairs; <= 1e15 (default 1e10)", 1e15, ice.exchange_H));
   }
 
@@ -293,8 +315,8 @@ static PetscErrorCode ReadOptions(IceSolver &ice, RiemannSetup &rs)
 
 static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
 {
-  PetscInt        m, n, p;
-  const PetscInt *lnode[3] = {nullptr, nullptr, nullptr};
+  PetscInt              m, n, p;
+  const PetscInt       *lnode[3] = {nullptr, nullptr, nullptr};
   std::vector<PetscInt> lcell[3];
   PetscFunctionBeginUser;
   PetscCall(DMDAGetInfo(nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
@@ -304,7 +326,8 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
     lcell[d].assign(lnode[d], lnode[d] + procs[d]);
     lcell[d].back() -= 1; // the last node of each direction starts no cell
     for (PetscInt r = 0; r < procs[d]; ++r)
-      PetscCheck(lcell[d][r] >= 2 || procs[d] == 1, ice.comm, PETSC_ERR_USER_INPUT, "Gas: rank slot %" PetscInt_FMT " owns %" PetscInt_FMT " cell(s) in direction %" PetscInt_FMT "; the gas solver needs at least 2 per rank: use fewer ranks or more cells", r, lcell[d][r], d);
+      PetscCheck(lcell[d][r] >= 2 || procs[d] == 1, ice.comm, PETSC_ERR_USER_INPUT,
+                 "Gas: rank slot %" PetscInt_FMT " owns %" PetscInt_FMT " cell(s) in direction %" PetscInt_FMT "; the gas solver needs at least 2 per rank: use fewer ranks or more cells", r, lcell[d][r], d);
   }
   ice.stride = ice.nmat * icef::kMatFields + icef::kCellFields;
   {
@@ -316,15 +339,14 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
   const DMBoundaryType bt = DM_BOUNDARY_GHOSTED;
   if (ice.dim == 2) {
     PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_BOX, ice.cells[0], ice.cells[1], m, n, ice.stride, 2, lcell[0].data(), lcell[1].data(), &ice.da));
-    if (ice.pressure_solver == IcePressureSolver::SemiImplicit)
-      PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], m, n, 1, 1, lcell[0].data(), lcell[1].data(), &ice.da_p));
+    if (ice.pressure_solver == IcePressureSolver::SemiImplicit) PetscCall(DMDACreate2d(ice.comm, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], m, n, 1, 1, lcell[0].data(), lcell[1].data(), &ice.da_p));
   } else {
     PetscCall(DMDACreate3d(ice.comm, bt, bt, bt, DMDA_STENCIL_BOX, ice.cells[0], ice.cells[1], ice.cells[2], m, n, p, ice.stride, 2, lcell[0].data(), lcell[1].data(), lcell[2].data(), &ice.da));
-    if (ice.pressure_solver == IcePressureSolver::SemiImplicit)
-      PetscCall(DMDACreate3d(ice.comm, bt, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], ice.cells[2], m, n, p, 1, 1, lcell[0].data(), lcell[1].data(), lcell[2].data(), &ice.da_p));
+    if (ice.pressure_solver == IcePressureSolver::SemiImplicit) PetscCall(DMDACreate3d(ice.comm, bt, bt, bt, DMDA_STENCIL_STAR, ice.cells[0], ice.cells[1], ice.cells[2], m, n, p, 1, 1, lcell[0].data(), lcell[1].data(), lcell[2].data(), &ice.da_p));
   }
   PetscCall(DMSetUp(ice.da));
-  PetscCall(DMDASetUniformCoordinates(ice.da, ice.lower[0] + 0.5 * ice.h[0], ice.lower[0] + (ice.cells[0] - 0.5) * ice.h[0], ice.lower[1] + 0.5 * ice.h[1], ice.lower[1] + (ice.cells[1] - 0.5) * ice.h[1], ice.lower[2] + 0.5 * ice.h[2], ice.lower[2] + (ice.cells[2] - 0.5) * ice.h[2]));
+  PetscCall(DMDASetUniformCoordinates(ice.da, ice.lower[0] + 0.5 * ice.h[0], ice.lower[0] + (ice.cells[0] - 0.5) * ice.h[0], ice.lower[1] + 0.5 * ice.h[1], ice.lower[1] + (ice.cells[1] - 0.5) * ice.h[1], ice.lower[2] + 0.5 * ice.h[2],
+                                      ice.lower[2] + (ice.cells[2] - 0.5) * ice.h[2]));
   PetscCall(DMCreateGlobalVector(ice.da, &ice.state));
   PetscCall(DMCreateLocalVector(ice.da, &ice.local));
   PetscCall(PetscObjectSetName((PetscObject)ice.state, "gas"));
@@ -337,9 +359,9 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
     ice.gxs[d] = gxs[d];
     ice.gxm[d] = gxm[d];
   }
-  ice.lstride[0] = 1;
-  ice.lstride[1] = gxm[0];
-  ice.lstride[2] = gxm[0] * gxm[1];
+  ice.lstride[0]      = 1;
+  ice.lstride[1]      = gxm[0];
+  ice.lstride[2]      = gxm[0] * gxm[1];
   const size_t nlocal = (size_t)gxm[0] * gxm[1] * gxm[2];
   for (PetscInt d = 0; d < ice.dim; ++d) {
     ice.face_vel[d].assign(nlocal * ice.nmat, 0);
@@ -392,7 +414,8 @@ static PetscErrorCode CreateDMs(IceSolver &ice, DM nodes)
       pc_type_set = (PetscBool)(pc_type_set || set);
     }
     PetscOptionsBegin(ice.comm, "ice_pressure_", "Semi-implicit pressure preconditioner", "");
-    PetscCall(PetscOptionsReal("-jacobi_below", "CG + Jacobi for a step whose pressure matrix has max_rows sum|offdiag|/diag below this (default preconditioner, and no -ice_pressure_ksp_type/_view/_monitor/_converged_reason, unless given; 0: never)", "", ice.jacobi_below, &ice.jacobi_below, &jacobi_below_set));
+    PetscCall(PetscOptionsReal("-jacobi_below", "CG + Jacobi for a step whose pressure matrix has max_rows sum|offdiag|/diag below this (default preconditioner, and no -ice_pressure_ksp_type/_view/_monitor/_converged_reason, unless given; 0: never)",
+                               "", ice.jacobi_below, &ice.jacobi_below, &jacobi_below_set));
     PetscCall(PetscOptionsInt("-pc_lag", "Rebuild the preconditioner every this many gas steps (it is reused by a step's later outer iterations)", "", ice.pc_lag, &ice.pc_lag, nullptr));
     PetscOptionsEnd();
     PetscCheck(ice.pc_lag >= 1, ice.comm, PETSC_ERR_USER_INPUT, "-ice_pressure_pc_lag must be at least 1");
@@ -458,7 +481,7 @@ static PetscErrorCode ReadSolidExchange(IceSolver &ice)
   for (PetscInt a = 0; a < ice.nmat; ++a)
     for (PetscInt b = 0; b < ice.nmat; ++b) {
       if (a < ice.ngas && b < ice.ngas) continue;
-      const bool pair = a != b && (a < ice.ngas || b < ice.ngas);
+      const bool pair      = a != b && (a < ice.ngas || b < ice.ngas);
       ice.exchange_K[a][b] = pair ? K : 0;
       ice.exchange_H[a][b] = pair ? H : 0;
     }
@@ -468,7 +491,7 @@ static PetscErrorCode ReadSolidExchange(IceSolver &ice)
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **out)
 {
   PetscFunctionBeginUser;
-  *out = nullptr;
+  *out      = nullptr;
   auto ice  = std::make_unique<IceSolver>();
   ice->comm = comm;
   ice->dim  = grid.dim;
@@ -483,7 +506,8 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   if (rs.set && !help) { // a diaphragm outside the domain would give one uniform state without a word
     const PetscReal upper0 = grid.lower[0] + grid.cells[0] * grid.h[0];
     if (rs.shape == RiemannShape::Planar)
-      PetscCheck(rs.position > grid.lower[0] && rs.position < upper0, comm, PETSC_ERR_USER_INPUT, "Option -ice_riemann_position = %g m puts the diaphragm outside the domain: it must be in (%g, %g) m (x)", (double)rs.position, (double)grid.lower[0], (double)upper0);
+      PetscCheck(rs.position > grid.lower[0] && rs.position < upper0, comm, PETSC_ERR_USER_INPUT, "Option -ice_riemann_position = %g m puts the diaphragm outside the domain: it must be in (%g, %g) m (x)", (double)rs.position, (double)grid.lower[0],
+                 (double)upper0);
     else PetscCheck(rs.position > 0, comm, PETSC_ERR_USER_INPUT, "Option -ice_riemann_position = %g m is the radius of the %s: it must be > 0", (double)rs.position, rs.shape == RiemannShape::Sphere ? "sphere" : "cylinder");
   }
   ice->ngas = ice->nmat;
@@ -521,7 +545,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   // The initial state (ice.md 8: sub-cell sampling of each region, 4 points per direction).
   const IceSolver &cice = *ice;
   for (PetscInt m = 0; m < cice.ngas; ++m) {
-    const IceMaterial &mat = cice.materials[m];
+    const IceMaterial &mat        = cice.materials[m];
     const bool         in_riemann = rs.set && (m == rs.left_material || m == rs.right_material);
     if (!in_riemann) {
       PetscCheck(mat.density > 0, comm, PETSC_ERR_USER_INPUT, "Gas material %s needs -%s_density > 0 (kg/m^3)", mat.name.c_str(), mat.name.c_str());
@@ -534,7 +558,7 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
   for (PetscInt k = ice->xs[2]; k < ice->xs[2] + ice->xm[2]; ++k)
     for (PetscInt j = ice->xs[1]; j < ice->xs[1] + ice->xm[1]; ++j)
       for (PetscInt i = ice->xs[0]; i < ice->xs[0] + ice->xm[0]; ++i) {
-        PetscScalar   *c = a + ice->LocalIndex(i, j, k) * ice->stride;
+        PetscScalar   *c      = a + ice->LocalIndex(i, j, k) * ice->stride;
         const PetscInt ijk[3] = {i, j, k};
         // fraction of the cell on the left (inside) of the diaphragm
         PetscReal left_fraction = 0;
@@ -577,8 +601,8 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
           } else if (rs.set && (m == rs.left_material || m == rs.right_material)) {
             // one material for both sides: the state of the side holding the cell centre;
             // two materials: each its own side's state, in proportion to the sub-cell samples
-            const bool      same  = rs.left_material == rs.right_material;
-            const bool      left  = same ? left_fraction >= 0.5 : m == rs.left_material;
+            const bool       same = rs.left_material == rs.right_material;
+            const bool       left = same ? left_fraction >= 0.5 : m == rs.left_material;
             const PetscReal *st   = left ? rs.left : rs.right;
             fraction              = same ? 1 : (left ? left_fraction : 1 - left_fraction);
             rho_micro             = st[0];
@@ -592,9 +616,13 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
             p         = mat.eos->Evaluate(rho_micro, T).pressure;
             for (PetscInt d = 0; d < ice->dim; ++d) u[d] = mat.velocity[d];
           }
-          PetscCheck(T > 0 && std::isfinite(T), comm, PETSC_ERR_USER_INPUT, "Gas material %s: initial temperature %g K from its equation of state is not positive; check its density, pressure and -%s_eos_type parameters", mat.name.c_str(), (double)T, mat.name.c_str());
+          PetscCheck(T > 0 && std::isfinite(T), comm, PETSC_ERR_USER_INPUT, "Gas material %s: initial temperature %g K from its equation of state is not positive; check its density, pressure and -%s_eos_type parameters", mat.name.c_str(), (double)T,
+                     mat.name.c_str());
           // the equilibration solves for p in [1e-6, 1e15] Pa: a state outside it cannot start
-          PetscCheck(mat.solid || (p >= 1e-6 && p <= 1e15 && rho_micro <= 1e5 && T <= 1e6), comm, PETSC_ERR_USER_INPUT, "Gas material %s: the initial state (density %g kg/m^3, temperature %g K, pressure %g Pa) is outside what the solver takes (pressure in [1e-6, 1e15] Pa, density <= 1e5 kg/m^3, temperature <= 1e6 K); check -%s_density, -%s_temperature (or -ice_riemann_left/right) and -%s_eos_type parameters", mat.name.c_str(), (double)rho_micro, (double)T, (double)p, mat.name.c_str(), mat.name.c_str(), mat.name.c_str());
+          PetscCheck(mat.solid || (p >= 1e-6 && p <= 1e15 && rho_micro <= 1e5 && T <= 1e6), comm, PETSC_ERR_USER_INPUT,
+                     "Gas material %s: the initial state (density %g kg/m^3, temperature %g K, pressure %g Pa) is outside what the solver takes (pressure in [1e-6, 1e15] Pa, density <= 1e5 kg/m^3, temperature <= 1e6 K); check -%s_density, "
+                     "-%s_temperature (or -ice_riemann_left/right) and -%s_eos_type parameters",
+                     mat.name.c_str(), (double)rho_micro, (double)T, (double)p, mat.name.c_str(), mat.name.c_str(), mat.name.c_str());
           c[ice->Offset(m, icef::rho)]   = PetscMax(fraction, ice->rho_tiny) * rho_micro;
           c[ice->Offset(m, icef::temp)]  = T;
           c[ice->Offset(m, icef::spvol)] = 1 / rho_micro;
@@ -623,7 +651,8 @@ PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help,
 PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer)
 {
   PetscFunctionBeginUser;
-  PetscCall(PetscViewerASCIIPrintf(viewer, "  gas (ICE): %" PetscInt_FMT " material(s), pressure %s, advection order %" PetscInt_FMT "%s, cfl %g (sound-speed knob %g)\n", ice.nmat, IcePressureSolverNames[(int)ice.pressure_solver], ice.advection_order, ice.advection_order == 2 && ice.compatible_fluxes ? " with compatible fluxes" : "", (double)ice.cfl, (double)ice.sound_speed_knob));
+  PetscCall(PetscViewerASCIIPrintf(viewer, "  gas (ICE): %" PetscInt_FMT " material(s), pressure %s, advection order %" PetscInt_FMT "%s, cfl %g (sound-speed knob %g)\n", ice.nmat, IcePressureSolverNames[(int)ice.pressure_solver],
+                                   ice.advection_order, ice.advection_order == 2 && ice.compatible_fluxes ? " with compatible fluxes" : "", (double)ice.cfl, (double)ice.sound_speed_knob));
   const char *faces[3][2] = {{"xmin", "xmax"}, {"ymin", "ymax"}, {"zmin", "zmax"}};
   PetscCall(PetscViewerASCIIPrintf(viewer, "    boundaries:"));
   for (PetscInt d = 0; d < ice.dim; ++d)
@@ -636,7 +665,8 @@ PetscErrorCode IceView(const IceSolver &ice, PetscViewer viewer)
       const IceInflowState *states[2] = {&bc.inflow, bc.has_jet ? &bc.jet : nullptr};
       for (int which = 0; which < 2 && states[which]; ++which) {
         const IceInflowState &in = *states[which];
-        PetscCall(PetscViewerASCIIPrintf(viewer, "    inflow %s%s: %s, density %g kg/m^3, velocity (%g, %g, %g) m/s, temperature %g K", faces[d][s], which ? " jet" : (bc.has_jet ? " coflow" : ""), ice.nmat ? ice.materials[in.material].name.c_str() : "", (double)in.state[0], (double)in.state[1], (double)in.state[2], (double)in.state[3], (double)in.state[4]));
+        PetscCall(PetscViewerASCIIPrintf(viewer, "    inflow %s%s: %s, density %g kg/m^3, velocity (%g, %g, %g) m/s, temperature %g K", faces[d][s], which ? " jet" : (bc.has_jet ? " coflow" : ""),
+                                         ice.nmat ? ice.materials[in.material].name.c_str() : "", (double)in.state[0], (double)in.state[1], (double)in.state[2], (double)in.state[3], (double)in.state[4]));
         if (which) PetscCall(PetscViewerASCIIPrintf(viewer, " within %g m of (%g, %g, %g) m along the face", (double)bc.jet_radius, (double)bc.jet_center[0], (double)bc.jet_center[1], (double)bc.jet_center[2]));
         PetscCall(PetscViewerASCIIPrintf(viewer, "\n"));
       }

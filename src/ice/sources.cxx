@@ -20,8 +20,8 @@ namespace burst {
 
 PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscInt idx, PetscInt m, PetscReal *cold_L)
 {
-  const GasEOS   &eos    = *ice.materials[m].eos;
-  const PetscReal theta  = c[ice.Offset(m, icef::theta)], rho = c[ice.Offset(m, icef::rho)], rho_L = c[ice.Offset(m, icef::rho_L)];
+  const GasEOS   &eos   = *ice.materials[m].eos;
+  const PetscReal theta = c[ice.Offset(m, icef::theta)], rho = c[ice.Offset(m, icef::rho)], rho_L = c[ice.Offset(m, icef::rho_L)];
   const PetscReal dp_dil = c[ice.CellOffset(icef::dp_dil)];
   const PetscReal dr     = ice.has_mass_source ? ice.mass_source[idx * ice.nmat + m] : 0;
   const PetscReal de     = ice.has_mass_source ? ice.energy_source[idx * ice.nmat + m] : 0;
@@ -39,7 +39,7 @@ const char *const IceFallbackClassNames[] = {"burning", "solid_filled", "solid_s
 
 void IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx)
 {
-  PetscReal solid = 0; // the solids' volume fraction
+  PetscReal solid   = 0; // the solids' volume fraction
   bool      burning = false;
   for (PetscInt m = ice.ngas; m < ice.nmat; ++m) solid += c[ice.Offset(m, icef::theta)];
   for (PetscInt m = 0; m < ice.ngas && ice.has_mass_source; ++m) burning = burning || ice.mass_source[idx * ice.nmat + m] > 0;
@@ -88,7 +88,7 @@ static void IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx)
     if (IceIsTrace(ice, c, m)) continue;
     const IceMaterial &mat = ice.materials[m];
     const PetscReal    rho = c[ice.Offset(m, icef::rho)], rho_L = c[ice.Offset(m, icef::rho_L)];
-    const bool         cold = mat.eos->HasColdEnergy();
+    const bool         cold  = mat.eos->HasColdEnergy();
     PetscReal          slip0 = 0, slipL = 0, uL2 = 0;
     for (PetscInt d = 0; d < dim; ++d) {
       const PetscReal u = c[ice.Offset(m, icef::vel + d)], uL = c[ice.Offset(m, icef::vel_L + d)];
@@ -97,7 +97,7 @@ static void IceSolidCellEnergy(IceSolver &ice, PetscScalar *c, PetscInt idx)
       uL2 += uL * uL;
     }
     // what IceSources gave it (the conservative form, or a fallback)
-    const PetscReal total = rho_L * (mat.eos->cv * (c[ice.Offset(m, icef::temp_L)] + (cold ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2);
+    const PetscReal total   = rho_L * (mat.eos->cv * (c[ice.Offset(m, icef::temp_L)] + (cold ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2);
     PetscReal       cold_tf = 0;
     const PetscReal T_tf    = IceTemperatureForm(ice, c, idx, m, cold ? &cold_tf : nullptr);
     // after the exchange (exchange.cxx adds rho |u_L - u_cm|^2 / 2): rho_L (c_v T_tf + e_cold) + rho |u - u_cm|^2 / 2
@@ -133,7 +133,7 @@ PetscErrorCode IceSources(IceSolver &ice)
         }
   }
   // the cell exchange follows and gives each material the kinetic energy its drag removes
-  const bool drag_settles = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
+  const bool drag_settles      = ice.conservative_energy && ice.drag_heating && ice.nmat > 1;
   const bool solid_cell_energy = drag_settles && ice.solid_cell_energy && ice.ngas < ice.nmat;
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
@@ -168,10 +168,10 @@ PetscErrorCode IceSources(IceSolver &ice)
           const PetscReal    theta = c[ice.Offset(m, icef::theta)];
           if (mixed) split[m] = false;
           // mass conversion (burning, ice.md 2.4): the mass, its momentum and its energy
-          const PetscReal  dr  = ice.has_mass_source ? ice.mass_source[idx * n + m] : 0;
-          const PetscReal *dmv = ice.has_mass_source ? &ice.momentum_source[(idx * n + m) * 3] : nullptr;
-          const PetscReal  de  = ice.has_mass_source ? ice.energy_source[idx * n + m] : 0;
-          const PetscReal  rho_L = dr < 0 ? PetscMax(rho + dr, ice.rho_tiny / c[ice.Offset(m, icef::spvol)]) : rho + dr;
+          const PetscReal  dr           = ice.has_mass_source ? ice.mass_source[idx * n + m] : 0;
+          const PetscReal *dmv          = ice.has_mass_source ? &ice.momentum_source[(idx * n + m) * 3] : nullptr;
+          const PetscReal  de           = ice.has_mass_source ? ice.energy_source[idx * n + m] : 0;
+          const PetscReal  rho_L        = dr < 0 ? PetscMax(rho + dr, ice.rho_tiny / c[ice.Offset(m, icef::spvol)]) : rho + dr;
           c[ice.Offset(m, icef::rho_L)] = rho_L;
           PetscReal u2 = 0, uL2 = 0, ke_in = 0;
           for (PetscInt d = 0; d < 3; ++d) {
@@ -181,7 +181,7 @@ PetscErrorCode IceSources(IceSolver &ice)
             // of the force: the rest keeps the acceleration of the whole. (With the loss's own
             // momentum, a burnt-out particle's mass taken from a cell that holds less of it left a
             // floored rho_L with a finite momentum: 1e9 m/s on the solid's nodes.)
-            const PetscReal uL = dr < 0 ? (rho > 0 ? u + source / rho : u) : (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
+            const PetscReal uL                = dr < 0 ? (rho > 0 ? u + source / rho : u) : (rho * u + source + (dmv ? dmv[d] : 0)) / rho_L;
             c[ice.Offset(m, icef::vel_L + d)] = uL;
             u2 += u * u;
             uL2 += uL * uL;
@@ -195,8 +195,7 @@ PetscErrorCode IceSources(IceSolver &ice)
             // a trace of gas (a cell the solids fill): no compression work, which would heat a
             // mass of rho_tiny by the solids' pressure changes to absurd temperatures
             T_L = (rho * mat.eos->cv * c[ice.Offset(m, icef::temp)] + de) / (rho_L * mat.eos->cv);
-          }
-          else if (ice.conservative_energy) {
+          } else if (ice.conservative_energy) {
             // total energy from the work of the face pressures on the face volume fluxes, plus what
             // the converted mass brings, minus the kinetic energy: conservative, so shocks move at
             // the Rankine-Hugoniot speed
@@ -205,7 +204,7 @@ PetscErrorCode IceSources(IceSolver &ice)
               const PetscInt faces[2] = {idx, idx + ice.lstride[d]};
               for (int s = 0; s < 2; ++s) {
                 const PetscInt  R = faces[s], L = R - ice.lstride[d];
-                const PetscReal u = ice.face_vel[d][R * n + m];
+                const PetscReal u       = ice.face_vel[d][R * n + m];
                 const PetscReal theta_f = u > 0 ? a[L * S + ice.Offset(m, icef::theta)] : a[R * S + ice.Offset(m, icef::theta)];
                 const PetscReal volume  = (s ? 1 : -1) * ice.dt / ice.h[d] * theta_f * u;
                 work -= (p_face[d][s] + q_face[d][s]) * volume;
@@ -215,8 +214,8 @@ PetscErrorCode IceSources(IceSolver &ice)
             if (cold) {
               // e = c_v T + e_cold(rho_micro) (gas_eos.hpp): the work changes e, and the cold part
               // follows the material's own volume, theta + the face volumes (+ the converted mass's)
-              const PetscReal e_cold  = mat.eos->ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]);
-              const PetscReal theta_L = theta + expansion + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
+              const PetscReal e_cold   = mat.eos->ColdEnergy(1 / c[ice.Offset(m, icef::spvol)]);
+              const PetscReal theta_L  = theta + expansion + (dr > 0 ? dr * c[ice.Offset(m, icef::spvol)] : 0);
               const PetscReal e_cold_L = theta_L > 0 ? mat.eos->ColdEnergy(rho_L / theta_L) : e_cold;
               const PetscReal total    = rho * (mat.eos->cv * c[ice.Offset(m, icef::temp)] + e_cold + 0.5 * u2) + work + de + ke_in;
               T_L                      = (total / rho_L - 0.5 * uL2 - e_cold_L) / mat.eos->cv;
@@ -241,7 +240,8 @@ PetscErrorCode IceSources(IceSolver &ice)
             deferred = !(T_L > 0);
             if (mixed && deferred) split[m] = false;
           } else T_L = IceTemperatureForm(ice, c, idx, m, nullptr);
-          PetscCheck((T_L > 0 || deferred) && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED, "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
+          PetscCheck((T_L > 0 || deferred) && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
+                     "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, mat.name.c_str(), i, j, k, (double)T_L);
           if (cold && !cold_from_faces) IceTemperatureForm(ice, c, idx, m, &cold_L);
           c[ice.Offset(m, icef::temp_L)] = T_L;
           // the advection's total energy adds T_L and the kinetic energy to this (advection.cxx)
@@ -266,12 +266,12 @@ PetscErrorCode IceSources(IceSolver &ice)
           PetscReal defect = 0, capacity = 0, consistent[kIceMaxMaterials], cold_tf[kIceMaxMaterials], kinetic[kIceMaxMaterials];
           for (PetscInt m = 0; m < ice.ngas; ++m) {
             if (!split[m]) continue;
-            const IceMaterial &mat = ice.materials[m];
+            const IceMaterial &mat   = ice.materials[m];
             const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
             PetscReal          uL2   = 0;
             for (PetscInt d = 0; d < dim; ++d) uL2 += c[ice.Offset(m, icef::vel_L + d)] * c[ice.Offset(m, icef::vel_L + d)];
-            kinetic[m] = 0.5 * uL2; // J/kg
-            cold_tf[m] = 0;
+            kinetic[m]           = 0.5 * uL2; // J/kg
+            cold_tf[m]           = 0;
             const PetscReal T_tf = IceTemperatureForm(ice, c, idx, m, mat.eos->HasColdEnergy() ? &cold_tf[m] : nullptr);
             consistent[m]        = rho_L * (mat.eos->cv * T_tf + cold_tf[m] + kinetic[m]);
             defect += conservative_total[m] - consistent[m];
@@ -285,7 +285,7 @@ PetscErrorCode IceSources(IceSolver &ice)
             const PetscReal    rho_L = c[ice.Offset(m, icef::rho_L)];
             const PetscReal    total = consistent[m] + defect * rho_L * mat.eos->cv / capacity;
             T_split[m]               = (total / rho_L - kinetic[m] - cold_tf[m]) / mat.eos->cv;
-            valid                 = valid && T_split[m] > 0 && std::isfinite(T_split[m]);
+            valid                    = valid && T_split[m] > 0 && std::isfinite(T_split[m]);
           }
           for (PetscInt m = 0; valid && m < ice.ngas; ++m) { // else each keeps its own face work's (checked above)
             if (!split[m]) continue;

@@ -33,8 +33,8 @@ PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
           for (PetscInt d = 0; d < ice.dim; ++d) {
             const PetscReal speed = std::fabs(c[ice.Offset(m, icef::vel + d)]), bound = ice.h[d] / (ice.sound_speed_knob * sound + speed + 1e-300);
             if (bound < local) {
-              local       = bound;
-              limit[0]    = i, limit[1] = j, limit[2] = k, limit[3] = m;
+              local    = bound;
+              limit[0] = i, limit[1] = j, limit[2] = k, limit[3] = m;
               limit_sound = sound, limit_speed = speed, limit_theta = theta, limit_T = c[ice.Offset(m, icef::temp)];
             }
           }
@@ -42,7 +42,10 @@ PetscErrorCode IceComputeTimeStep(IceSolver &ice, PetscReal *dt)
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCallMPI(MPI_Allreduce(&local, dt, 1, MPIU_REAL, MPI_MIN, ice.comm));
-  if (local == *dt && limit[3] >= 0) PetscCall(PetscInfo(nullptr, "Gas step %" PetscInt_FMT ": dt set by %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): volume fraction %g, sound speed %g m/s (0: a pocket under -ice_cfl_min_fraction), speed %g m/s, temperature %g K\n", ice.step, ice.materials[limit[3]].name.c_str(), limit[0], limit[1], limit[2], (double)limit_theta, (double)limit_sound, (double)limit_speed, (double)limit_T));
+  if (local == *dt && limit[3] >= 0)
+    PetscCall(PetscInfo(nullptr,
+                        "Gas step %" PetscInt_FMT ": dt set by %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT "): volume fraction %g, sound speed %g m/s (0: a pocket under -ice_cfl_min_fraction), speed %g m/s, temperature %g K\n",
+                        ice.step, ice.materials[limit[3]].name.c_str(), limit[0], limit[1], limit[2], (double)limit_theta, (double)limit_sound, (double)limit_speed, (double)limit_T));
   *dt *= ice.cfl;
   PetscCall(PetscLogEventEnd(ice.ev_dt, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);

@@ -74,21 +74,22 @@ namespace burst {
 
 namespace {
 struct CheckpointOptions {
-  PetscInt       interval      = 0;   // steps
-  PetscReal      wall_interval = 0;   // s
-  PetscInt       keep          = 2;
-  PetscReal      max_wall_time = 0;   // s, 0 = none
-  PetscReal      debug_delay   = 0;   // s between writing the temporary file and renaming it (tests)
-  std::string    restart;
-  PetscBool      allow_option_change = PETSC_FALSE;
-  std::string    run_id;              // 16 hex digits, this run's lineage
-  uint64_t       checksum = 0;        // this rank's part of the checkpoint being written
-  std::vector<std::string> written;   // names of the checkpoints this process wrote (rank 0)
-  PetscLogDouble start = 0, last_write = 0, last_step_end = 0, write_seconds = 0;
-  PetscLogEvent  ev_write = 0, ev_read = 0;
+  PetscInt                 interval      = 0; // steps
+  PetscReal                wall_interval = 0; // s
+  PetscInt                 keep          = 2;
+  PetscReal                max_wall_time = 0; // s, 0 = none
+  PetscReal                debug_delay   = 0; // s between writing the temporary file and renaming it (tests)
+  std::string              restart;
+  PetscBool                allow_option_change = PETSC_FALSE;
+  std::string              run_id;       // 16 hex digits, this run's lineage
+  uint64_t                 checksum = 0; // this rank's part of the checkpoint being written
+  std::vector<std::string> written;      // names of the checkpoints this process wrote (rank 0)
+  PetscLogDouble           start = 0, last_write = 0, last_step_end = 0, write_seconds = 0;
+  PetscLogEvent            ev_write = 0, ev_read = 0;
 } opts;
 
 volatile std::sig_atomic_t stop_signal = 0;
+
 void OnStopSignal(int signum) { stop_signal = signum; }
 
 // ---- Identity and integrity --------------------------------------------------------------------
@@ -151,16 +152,55 @@ bool RunControlOption(const std::string &name)
 {
   // run length and stops, output, checkpoints, monitoring, diagnostics (fragment search, the Grady
   // estimate), the parallel layout (-grid_balance*, the grid DM's own options) and PETSc's own
-  static const char *const prefixes[] = {
-    "output_", "checkpoint_", "monitor_", "restart", "log", "options_", "progress", "help",                          // burst's run control
-    "fragments", "grady",                                                                                            // diagnostics
-    "grid_balance", "grid_da_", "grid_dm_", "dm_", "sf_", "vecscatter",                                              // parallel layout
-    "info", "history", "malloc", "viewer", "on_error", "fp_trap", "no_signal_handler", "skip_petscrc", "mpi_",       // PETSc's own
-    "check_pointer", "is_view", "device_", "root_device", "default_device", "debugger", "start_in_debugger",
-    "stop_for_debugger", "display", "error_output", "petsc", "version", "memory_view", "objects_dump", "get_total_flops",
-    "tmp", "shared_tmp", "not_shared_tmp", "use_gpu", "mca"};
-  static const char *const exact[]    = {"max_steps", "final_time", "max_wall_time", "max_memory", "stop_kinetic_fraction", "mpm_energy_growth_limit", "scene", "mode",
-                                         "phases", "phase_mechanics_duration", "phase_checkpoint"}; // (which phases run, and how long, is run control)
+  // clang-format off (a table laid out by hand)
+  static const char *const prefixes[] = {"output_",
+                                         "checkpoint_",
+                                         "monitor_",
+                                         "restart",
+                                         "log",
+                                         "options_",
+                                         "progress",
+                                         "help", // burst's run control
+                                         "fragments",
+                                         "grady", // diagnostics
+                                         "grid_balance",
+                                         "grid_da_",
+                                         "grid_dm_",
+                                         "dm_",
+                                         "sf_",
+                                         "vecscatter", // parallel layout
+                                         "info",
+                                         "history",
+                                         "malloc",
+                                         "viewer",
+                                         "on_error",
+                                         "fp_trap",
+                                         "no_signal_handler",
+                                         "skip_petscrc",
+                                         "mpi_", // PETSc's own
+                                         "check_pointer",
+                                         "is_view",
+                                         "device_",
+                                         "root_device",
+                                         "default_device",
+                                         "debugger",
+                                         "start_in_debugger",
+                                         "stop_for_debugger",
+                                         "display",
+                                         "error_output",
+                                         "petsc",
+                                         "version",
+                                         "memory_view",
+                                         "objects_dump",
+                                         "get_total_flops",
+                                         "tmp",
+                                         "shared_tmp",
+                                         "not_shared_tmp",
+                                         "use_gpu",
+                                         "mca"};
+  static const char *const exact[]    = {"max_steps",       "final_time", "max_wall_time", "max_memory", "stop_kinetic_fraction", "mpm_energy_growth_limit", "scene", "mode", "phases", "phase_mechanics_duration",
+                                         "phase_checkpoint"}; // (which phases run, and how long, is run control)
+  // clang-format on
   for (const char *p : prefixes)
     if (name.compare(0, std::strlen(p), p) == 0) return true;
   for (const char *e : exact)
@@ -175,9 +215,10 @@ PetscErrorCode PhysicsOptions(std::map<std::string, std::string> &out)
   PetscFunctionBeginUser;
   out.clear();
   PetscCall(PetscOptionsGetAll(nullptr, &all));
-  std::istringstream words(all);
-  std::string        name;
+  std::istringstream       words(all);
+  std::string              name;
   std::vector<std::string> value;
+
   auto flush = [&]() {
     if (!name.empty() && !RunControlOption(name)) {
       std::string v;
@@ -208,10 +249,11 @@ std::string OptionsText(const std::map<std::string, std::string> &o)
 std::map<std::string, std::string> ParseOptionsText(const std::string &text)
 {
   std::map<std::string, std::string> o;
-  std::istringstream                 in(text);
+
+  std::istringstream in(text);
   for (std::string line; std::getline(in, line);) {
     if (line.size() < 2 || line[0] != '-') continue;
-    const size_t sp = line.find(' ');
+    const size_t sp                                                         = line.find(' ');
     o[line.substr(1, sp == std::string::npos ? std::string::npos : sp - 1)] = sp == std::string::npos ? "" : line.substr(sp + 1);
   }
   return o;
@@ -226,8 +268,8 @@ bool SameValue(std::string a, std::string b)
     std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return (char)std::tolower(c); });
     return s;
   };
-  a = lower(a);
-  b = lower(b);
+  a          = lower(a);
+  b          = lower(b);
   auto truth = [](const std::string &s) { return s.empty() || s == "true" || s == "yes" || s == "1" || s == "on" ? 1 : s == "false" || s == "no" || s == "0" || s == "off" ? 0 : -1; };
   if (truth(a) >= 0 && truth(a) == truth(b)) return true;
   std::istringstream sa(a), sb(b);
@@ -237,7 +279,7 @@ bool SameValue(std::string a, std::string b)
     const bool ga = (bool)std::getline(sa, ta, ','), gb = (bool)std::getline(sb, tb, ',');
     if (!ga && !gb) return any;
     if (ga != gb) return false;
-    char *ea, *eb;
+    char        *ea, *eb;
     const double va = std::strtod(ta.c_str(), &ea), vb = std::strtod(tb.c_str(), &eb);
     if (*ea || *eb || ta.empty() || tb.empty() || !(va == vb)) return false;
     any = true;
@@ -318,12 +360,12 @@ CheckpointInfo ReadInfo(const std::string &path, long step)
 {
   CheckpointInfo info;
   QuietHDF5      quiet;
-  info.path = path;
-  info.step = step;
+  info.path     = path;
+  info.step     = step;
   const hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) return info;
-  info.readable = true;
-  info.complete = H5Aexists_by_name(f, "/", "complete", H5P_DEFAULT) > 0;
+  info.readable     = true;
+  info.complete     = H5Aexists_by_name(f, "/", "complete", H5P_DEFAULT) > 0;
   const bool has_id = ReadStringAttribute(f, "run_id", info.run_id), has_sum = ReadStringAttribute(f, "checksum", info.checksum);
   info.identified = has_id && has_sum;
   (void)ReadStringAttribute(f, "physics_options", info.physics);
@@ -357,11 +399,11 @@ herr_t SumDataset(hid_t group, const char *name, const LinkInfo *, void *op)
     // checkpoint of any size in bounded memory
     hsize_t row = 1;
     for (int k = 1; k < rank; ++k) row *= dims[k];
-    const hsize_t rows  = rank ? dims[0] : 1;
-    const hsize_t block = PetscMax((hsize_t)1, ((hsize_t)1 << 20) / PetscMax(row, (hsize_t)1));
+    const hsize_t       rows  = rank ? dims[0] : 1;
+    const hsize_t       block = PetscMax((hsize_t)1, ((hsize_t)1 << 20) / PetscMax(row, (hsize_t)1));
     std::vector<double> buf((size_t)(PetscMin(block, rows) * row));
     for (hsize_t r0 = 0; r0 < rows && d->error.empty(); r0 += block) {
-      const hsize_t nr = PetscMin(block, rows - r0);
+      const hsize_t nr                  = PetscMin(block, rows - r0);
       hsize_t       start[H5S_MAX_RANK] = {0}, count[H5S_MAX_RANK];
       for (int k = 0; k < rank; ++k) count[k] = dims[k];
       if (rank) {
@@ -572,7 +614,7 @@ struct Part {
 std::vector<Part> Parts(Simulation &sim, PetscInt64 *local_particles)
 {
   std::vector<Part> parts(4);
-  parts[0].name = "run";
+  parts[0].name         = "run";
   CheckpointValues &run = parts[0].values;
   run.Global("time", &sim.time);
   run.Global("dt", &sim.dt);
@@ -604,7 +646,8 @@ std::vector<Part> Parts(Simulation &sim, PetscInt64 *local_particles)
 PetscErrorCode WritePart(Simulation &sim, PetscViewer viewer, const Part &part)
 {
   const std::vector<PetscReal> mine = part.values.Pack(true);
-  std::vector<PetscReal>       rows(sim.rank ? 0 : mine.size() * sim.size);
+
+  std::vector<PetscReal> rows(sim.rank ? 0 : mine.size() * sim.size);
   PetscFunctionBeginUser;
   PetscCallMPI(MPI_Gather(mine.data(), (int)mine.size(), MPIU_REAL, rows.data(), (int)mine.size(), MPIU_REAL, 0, sim.comm));
   const std::string names = part.values.Names(false), rank_names = part.values.Names(true);
@@ -631,7 +674,9 @@ PetscErrorCode ReadPart(Simulation &sim, PetscViewer viewer, const std::string &
       theirs = text;
       PetscCall(PetscFree(text));
     }
-    PetscCheck(has && theirs == mine, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s does not hold this burst's %s values for /%s (it holds '%s', this burst keeps '%s'): it was written by another version of burst or another scene; restart it with the burst that wrote it", file.c_str(), per_rank ? "per-rank" : "run-wide", part.name.c_str(), has ? theirs.c_str() : "none", mine.c_str());
+    PetscCheck(has && theirs == mine, sim.comm, PETSC_ERR_USER_INPUT,
+               "Checkpoint %s does not hold this burst's %s values for /%s (it holds '%s', this burst keeps '%s'): it was written by another version of burst or another scene; restart it with the burst that wrote it", file.c_str(),
+               per_rank ? "per-rank" : "run-wide", part.name.c_str(), has ? theirs.c_str() : "none", mine.c_str());
   }
   PetscCall(ReadRootValues(sim, viewer, file, part.name, "values", part.values.Count(false), values));
   PetscCall(ReadRootValues(sim, viewer, file, part.name, "rank_values", part.values.Count(true) * saved_ranks, rows));
@@ -823,13 +868,15 @@ PetscErrorCode MoveOtherRunsAside(const Simulation &sim)
         const std::string to = dir + "/" + BaseName(c.path);
         struct stat       st;
         if (stat(to.c_str(), &st) == 0 || std::rename(c.path.c_str(), to.c_str()) != 0) {
-          error = "Option -output_dir " + sim.output.dir + " holds " + BaseName(c.path) + " of another run (" + kv.first + "), and it cannot be moved to " + to + (stat(to.c_str(), &st) == 0 ? " (a file of that name exists)" : "") + "; move it away or choose another -output_dir";
+          error = "Option -output_dir " + sim.output.dir + " holds " + BaseName(c.path) + " of another run (" + kv.first + "), and it cannot be moved to " + to + (stat(to.c_str(), &st) == 0 ? " (a file of that name exists)" : "") +
+                  "; move it away or choose another -output_dir";
           break;
         }
         names += (names.empty() ? "" : ", ") + BaseName(c.path);
       }
       if (!error.empty()) break;
-      note += "Note: -output_dir " + sim.output.dir + " held checkpoints of another run (" + (kv.first == "unidentified" ? std::string("without a run id") : "run " + kv.first) + "): " + names + "; moved to " + dir + " (continue that run with -restart " + dir + "). This run (" + opts.run_id + ") writes its own snapshots, monitor.csv and summary.json in " + sim.output.dir + "\n";
+      note += "Note: -output_dir " + sim.output.dir + " held checkpoints of another run (" + (kv.first == "unidentified" ? std::string("without a run id") : "run " + kv.first) + "): " + names + "; moved to " + dir +
+              " (continue that run with -restart " + dir + "). This run (" + opts.run_id + ") writes its own snapshots, monitor.csv and summary.json in " + sim.output.dir + "\n";
     }
   }
   PetscCall(BcastString(sim.comm, error));
@@ -857,7 +904,8 @@ PetscErrorCode CheckpointSetUp(Simulation &sim)
   PetscCall(PetscOptionsString("-restart", "Continue from a checkpoint: a checkpoint_<step>.h5 file, or a folder (its newest checkpoint)", "", buf, buf, sizeof(buf), &set));
   PetscCheck(!set || buf[0], sim.comm, PETSC_ERR_USER_INPUT, "Option -restart needs a checkpoint file or a folder");
   opts.restart = buf;
-  PetscCall(PetscOptionsBool("-restart_allow_option_change", "Restart even if the physics options (materials, geometry, grid, models) differ from the checkpoint's: each difference is printed as a note; default false (refused, naming the option)", "", opts.allow_option_change, &opts.allow_option_change, nullptr));
+  PetscCall(PetscOptionsBool("-restart_allow_option_change", "Restart even if the physics options (materials, geometry, grid, models) differ from the checkpoint's: each difference is printed as a note; default false (refused, naming the option)", "",
+                             opts.allow_option_change, &opts.allow_option_change, nullptr));
   PetscCall(PetscOptionsReal("-checkpoint_debug_delay", "Testing only: seconds to wait between writing a checkpoint's temporary file and renaming it", "", opts.debug_delay, &opts.debug_delay, nullptr));
   PetscCall(CheckRange(sim.comm, "-checkpoint_debug_delay", opts.debug_delay, 0, 3600, PETSC_FALSE));
   PetscOptionsEnd();
@@ -910,8 +958,8 @@ PetscErrorCode CheckpointKeepAs(Simulation &sim, const std::string &name)
 
 PetscErrorCode CheckpointWrite(Simulation &sim)
 {
-  PetscViewer    viewer;
-  PetscLogDouble t0, t1;
+  PetscViewer       viewer;
+  PetscLogDouble    t0, t1;
   const std::string path = CheckpointName(sim, sim.step), tmp = path + ".tmp";
   PetscFunctionBeginUser;
   PetscCall(PetscTime(&t0));
@@ -941,7 +989,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
   ngas /= 2;
   // what a restart checks
   const std::string solids = SolidNames(sim), gases = GasNames(sim);
-  const PetscInt    cells[3] = {sim.mpm.grid.cells[0], sim.mpm.grid.cells[1], sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1};
+  const PetscInt    cells[3]  = {sim.mpm.grid.cells[0], sim.mpm.grid.cells[1], sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1};
   const PetscInt    counts[2] = {nrec, ngas};
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "scene", PETSC_STRING, sim.run.scene.c_str()));
   PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "solid_materials", PETSC_STRING, solids.c_str()));
@@ -960,7 +1008,7 @@ PetscErrorCode CheckpointWrite(Simulation &sim)
     PetscCall(BcastString(sim.comm, text)); // identical on every rank (collective attribute writes)
     double when = (double)std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count() * 1e-6;
     PetscCallMPI(MPI_Bcast(&when, 1, MPI_DOUBLE, 0, sim.comm));
-    const PetscInt    format = 3;
+    const PetscInt    format   = 3;
     const std::string checksum = Hex(sum), hash = Hex(Fnv64(text));
     PetscReal         written_at = (PetscReal)when;
     PetscCall(PetscViewerHDF5WriteAttribute(viewer, "/", "format", PETSC_INT, &format));
@@ -1048,7 +1096,8 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
       std::string list;
       for (size_t i = 0; i < differ.size() && i < 8; ++i) list += (i ? "; " : "") + differ[i];
       if (differ.size() > 8) list += "; and " + std::to_string(differ.size() - 8) + " more";
-      SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s was written with other physics options than this run's (%d differ): %s. Restart with the checkpoint's options, or pass -restart_allow_option_change to continue with this run's", file.c_str(), (int)differ.size(), list.c_str());
+      SETERRQ(sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s was written with other physics options than this run's (%d differ): %s. Restart with the checkpoint's options, or pass -restart_allow_option_change to continue with this run's",
+              file.c_str(), (int)differ.size(), list.c_str());
     }
     opts.run_id = chosen.run_id; // the restart continues the checkpoint's run
   } else PetscCall(PetscPrintf(sim.comm, "Note: checkpoint %s carries no run id, physics options or checksum (written by an older burst): it is not verified, and this run continues as run %s\n", file.c_str(), opts.run_id.c_str()));
@@ -1058,8 +1107,8 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
 
   // every part's values first: the particles need the run's counts, and the parts are applied
   // after the particles and the gas are read (their set-up state stays until then)
-  PetscInt64              local_particles = 0;
-  std::vector<Part>       parts = Parts(sim, &local_particles);
+  PetscInt64                          local_particles = 0;
+  std::vector<Part>                   parts           = Parts(sim, &local_particles);
   std::vector<std::vector<PetscReal>> values(parts.size()), rows(parts.size());
   for (size_t i = 0; i < parts.size(); ++i) PetscCall(ReadPart(sim, viewer, file, parts[i], saved_ranks, values[i], rows[i]));
   std::vector<PetscReal> rec, gas_rec, phases;
@@ -1072,7 +1121,7 @@ PetscErrorCode CheckpointRestore(Simulation &sim)
     PetscCall(ReadRootValues(sim, viewer, file, "phases", "state", kPhasesStateSize, phases));
   }
   if (sim.HasParticles()) {
-    const CheckpointValues &run = parts[0].values;
+    const CheckpointValues &run   = parts[0].values;
     const PetscInt          width = run.Count(true), at = run.Offset(true, "local_particles");
     std::vector<PetscInt64> counts(saved_ranks);
     for (PetscInt r = 0; r < saved_ranks; ++r) counts[r] = (PetscInt64)rows[0][(size_t)width * r + at];
@@ -1130,7 +1179,7 @@ PetscErrorCode CheckpointAfterStep(Simulation &sim, PetscBool *stop)
   const bool due = (opts.interval > 0 && sim.step % opts.interval == 0) || global[2];
   if (due || global[0] || global[1]) PetscCall(CheckpointWrite(sim));
   if (global[0] || global[1]) {
-    *stop = PETSC_TRUE;
+    *stop                 = PETSC_TRUE;
     const std::string why = global[0] ? std::string("signal ") + (global[0] == SIGTERM ? "SIGTERM" : global[0] == SIGUSR1 ? "SIGUSR1" : std::to_string(global[0])) + " received" : WallMessage();
     PetscCall(PetscPrintf(sim.comm, "Stopping at step %" PetscInt_FMT ", t = %g s: %s. Wrote %s; continue with -restart %s\n", sim.step, (double)sim.time, why.c_str(), CheckpointName(sim, sim.step).c_str(), sim.output.dir.c_str()));
   }

@@ -30,7 +30,7 @@ public:
 
   PetscInt               Count(bool per_rank) const;
   std::string            Names(bool per_rank) const; // "name:n,name:n,..."
-  std::vector<PetscReal> Pack(bool per_rank) const;   // the values in the order listed, as reals
+  std::vector<PetscReal> Pack(bool per_rank) const;  // the values in the order listed, as reals
   void                   Unpack(bool per_rank, const PetscReal *values);
   // Where the entry `name` starts in a packed row, -1 if it is not listed.
   PetscInt Offset(bool per_rank, const std::string &name) const;

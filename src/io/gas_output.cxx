@@ -38,7 +38,7 @@ PetscErrorCode WriteGasOutput(Simulation &sim)
   PetscCall(PetscLogEventBegin(sim.output.ev_output, 0, 0, 0, 0));
   PetscCall(IceSyncGlobal(ice));
   std::snprintf(name, sizeof(name), "gas_%06d.h5", (int)sim.step);
-  const std::string path = sim.output.dir + "/" + name, tmp = path + ".tmp";
+  const std::string            path = sim.output.dir + "/" + name, tmp = path + ".tmp";
   const std::vector<GridField> fields = GasFields(ice);
   PetscCall(PetscViewerHDF5Open(sim.comm, tmp.c_str(), FILE_MODE_WRITE, &viewer));
   PetscCall(WriteGridFields(viewer, ice.da, ice.state, cell_group, fields));

@@ -63,7 +63,7 @@ PetscErrorCode WriteGridFields(PetscViewer h5, DM da, Vec v, const char group[],
   PetscCall(VecGetArrayRead(v, &in));
   for (const auto &f : fields) {
     const PetscInt out_dof = f.components == 1 ? 1 : 3;
-    DM             fda = nullptr;
+    DM             fda     = nullptr;
     Vec            w;
     PetscScalar   *out;
     PetscCall(FieldDA(da, out_dof, &fda));
@@ -85,7 +85,7 @@ PetscErrorCode WriteGridFields(PetscViewer h5, DM da, Vec v, const char group[],
 
 std::string XdmfGridBlock(const std::string &h5_file, const char group[], PetscInt dim, const PetscInt cells[3], const PetscReal lower[3], const PetscReal h[3], bool cell_centred, const std::vector<GridField> &fields, PetscReal time)
 {
-  const std::string  g = AbsoluteGroup(group);
+  const std::string  g         = AbsoluteGroup(group);
   const int          precision = (int)sizeof(PetscReal);
   std::ostringstream mesh, data, origin, spacing, s;
   s.precision(std::numeric_limits<PetscReal>::max_digits10);

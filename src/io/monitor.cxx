@@ -22,7 +22,6 @@
 
 namespace burst {
 
-
 PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
 {
   PetscInt         n, dim = sim.mpm.grid.dim;
@@ -50,8 +49,8 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   local[7] = sim.mpm.diag.removed_energy;
   // parts of the internal energy kept by the models: failure energy, plastic work, heat
   PetscReal   parts_local[5] = {0, 0, 0, sim.mpm.diag.viscous_work, 0}, parts[5];
-  const char *part_names[5] = {"failure_energy", "plastic_work", "plastic_heat", nullptr, "elastic_energy"};
-  const bool  elastic_known = SwarmHasModelField(sim.mpm, "elastic_energy");
+  const char *part_names[5]  = {"failure_energy", "plastic_work", "plastic_heat", nullptr, "elastic_energy"};
+  const bool  elastic_known  = SwarmHasModelField(sim.mpm, "elastic_energy");
   for (int k = 0; k < 5; ++k)
     if (part_names[k] && SwarmHasModelField(sim.mpm, part_names[k])) {
       const PetscReal *values;
@@ -66,17 +65,17 @@ PetscErrorCode ComputeEnergies(Simulation &sim, EnergyReport &r)
   r.plastic_work   = parts[1];
   r.heat           = parts[2];
   r.viscous_work   = parts[3];
-  r.kinetic       = global[0];
-  r.internal      = global[1];
-  r.external_work = global[2];
-  r.removed       = global[7];
-  r.total         = r.kinetic + r.internal + r.removed;
+  r.kinetic        = global[0];
+  r.internal       = global[1];
+  r.external_work  = global[2];
+  r.removed        = global[7];
+  r.total          = r.kinetic + r.internal + r.removed;
   r.stored_elastic = parts[4];
   r.unaccounted    = r.internal - r.stored_elastic - r.plastic_work - r.viscous_work - r.failure_energy;
   for (int d = 0; d < 3; ++d) r.momentum[d] = global[3 + d];
-  r.mass         = global[6];
+  r.mass                  = global[6];
   sim.output.energy_scale = PetscMax(sim.output.energy_scale, r.kinetic + r.internal + PetscAbsReal(r.external_work));
-  r.balance_error = sim.output.energy_scale > 0 ? (r.total - r.external_work - sim.mpm.diag.initial_energy) / sim.output.energy_scale : 0;
+  r.balance_error         = sim.output.energy_scale > 0 ? (r.total - r.external_work - sim.mpm.diag.initial_energy) / sim.output.energy_scale : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -106,7 +105,8 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
     }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
-  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT, "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.mpm.next_pid);
+  PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT,
+             "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.mpm.next_pid);
   for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
@@ -118,7 +118,7 @@ static PetscErrorCode NearestParticle(Simulation &sim)
   const PetscReal  *x;
   const PetscInt64 *pid;
   struct {
-    PetscReal d2;
+    PetscReal  d2;
     PetscInt64 id;
   } local = {PETSC_MAX_REAL, -1};
   PetscFunctionBeginUser;
@@ -164,22 +164,22 @@ struct Budget {
   PetscReal face_impulse[3] = {0, 0, 0}, bc_impulse[3] = {0, 0, 0}, removed_momentum[3] = {0, 0, 0};
   PetscReal solid_kinetic = 0, solid_internal = 0, heat_to_particles = 0, reactant_thermal = 0, gas_kinetic = 0, gas_internal = 0;
   PetscReal open_energy = 0, open_work = 0, removed_energy = 0, external_work = 0, chemical = 0;
-  PetscReal heat_to_solid_cells = 0, reactant_thermal_cells = 0; // the cells' view of two transfers (not in the sums)
-  PetscReal momentum_to_solid_cells[3] = {0, 0, 0}, momentum_to_nodes[3] = {0, 0, 0}; // the cells' and the nodes' view of the solids' momentum from the gas (not in the sums)
-  PetscReal kinetic_to_solid_cells = 0, kinetic_to_nodes = 0;                          // and of the kinetic energy it brings
-  PetscReal drag_energy_change = 0; // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
-  PetscReal solid_pressure_work = 0; // the kinetic energy the cells' pressure source gives the solids (not in the sums)
-  PetscReal gas_interface_work = 0;  // the gases' face work booked on one side of a face only (not in the sums)
-  PetscReal advection_energy_change = 0; // the gases' energy the advection did not conserve (not in the sums)
-  PetscReal solid_cell_energy_transfer = 0;                      // the gases of solids' cells to their solids (sources.cxx)
-  PetscReal fallback_energy_change = 0, trace_energy_change = 0; // and the sources: -p dV fallbacks, traces (not in the sums)
-  PetscReal equilibration_energy_change = 0;                      // and the equilibration (not in the sums)
-  PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0; // and the exchange: all of it, its fallbacks' part (the drag's above)
-  PetscReal burnt_particle_energy = 0;   // the kinetic energy and stress work burning took from the particles (not in the sums)
+  PetscReal heat_to_solid_cells = 0, reactant_thermal_cells = 0;                        // the cells' view of two transfers (not in the sums)
+  PetscReal momentum_to_solid_cells[3] = {0, 0, 0}, momentum_to_nodes[3] = {0, 0, 0};   // the cells' and the nodes' view of the solids' momentum from the gas (not in the sums)
+  PetscReal kinetic_to_solid_cells = 0, kinetic_to_nodes = 0;                           // and of the kinetic energy it brings
+  PetscReal drag_energy_change         = 0;                                             // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
+  PetscReal solid_pressure_work        = 0;                                             // the kinetic energy the cells' pressure source gives the solids (not in the sums)
+  PetscReal gas_interface_work         = 0;                                             // the gases' face work booked on one side of a face only (not in the sums)
+  PetscReal advection_energy_change    = 0;                                             // the gases' energy the advection did not conserve (not in the sums)
+  PetscReal solid_cell_energy_transfer = 0;                                             // the gases of solids' cells to their solids (sources.cxx)
+  PetscReal fallback_energy_change = 0, trace_energy_change = 0;                        // and the sources: -p dV fallbacks, traces (not in the sums)
+  PetscReal equilibration_energy_change = 0;                                            // and the equilibration (not in the sums)
+  PetscReal exchange_energy_change = 0, exchange_fallback_energy = 0;                   // and the exchange: all of it, its fallbacks' part (the drag's above)
+  PetscReal burnt_particle_energy = 0;                                                  // the kinetic energy and stress work burning took from the particles (not in the sums)
   PetscReal ambient_stress_work = 0, pressure_work_charged = 0, pressure_work_held = 0; // the gas pressure's work on the solids: the particles' (p - p_ref) I part, what the gases paid of all of it, what they could not (not in the sums)
-  PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;        // the sums
-  PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0; // sums less their initial values (kg m/s, J)
-  PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;  // relative to the largest term
+  PetscReal mass = 0, momentum[3] = {0, 0, 0}, energy = 0;                              // the sums
+  PetscReal momentum_residual[3] = {0, 0, 0}, energy_residual = 0;                      // sums less their initial values (kg m/s, J)
+  PetscReal mass_error = 0, momentum_error = 0, energy_error = 0;                       // relative to the largest term
 };
 
 PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
@@ -188,20 +188,38 @@ PetscReal Norm3(const PetscReal v[3]) { return std::sqrt(v[0] * v[0] + v[1] * v[
 // `initial` the sums become the reference (set-up), else the largest terms grow and the errors follow.
 PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTotals &gas, bool initial, Budget &b)
 {
-  enum { kOpen = 0, kRemovedMomentum = 9, kBcImpulse = 12, kRemovedMass = 15, kDrag = 16, kPressureWork = 17, kInterfaceWork = 18, kAdvection = 19, kFallback = 20, kTrace = 21, kEquilibration = 22, kExchange = 23, kExchangeFallback = 24, kSolidCell = 25, kCoupling = 26, kFaceMass = kCoupling + kNumCouplingCounters, kCount = kFaceMass + 6 };
+  enum {
+    kOpen             = 0,
+    kRemovedMomentum  = 9,
+    kBcImpulse        = 12,
+    kRemovedMass      = 15,
+    kDrag             = 16,
+    kPressureWork     = 17,
+    kInterfaceWork    = 18,
+    kAdvection        = 19,
+    kFallback         = 20,
+    kTrace            = 21,
+    kEquilibration    = 22,
+    kExchange         = 23,
+    kExchangeFallback = 24,
+    kSolidCell        = 25,
+    kCoupling         = 26,
+    kFaceMass         = kCoupling + kNumCouplingCounters,
+    kCount            = kFaceMass + 6
+  };
   PetscReal local[kCount] = {0}, global[kCount];
   PetscFunctionBeginUser;
   const IceBoundaryBudget &f = sim.ice->boundary;
-  local[kOpen] = f.mass;
+  local[kOpen]               = f.mass;
   for (int d = 0; d < 3; ++d) {
     local[kOpen + 1 + d]        = f.momentum[d];
     local[kOpen + 6 + d]        = f.impulse[d];
     local[kRemovedMomentum + d] = sim.mpm.diag.removed_momentum[d];
     local[kBcImpulse + d]       = sim.mpm.diag.bc_impulse[d];
   }
-  local[kOpen + 4]      = f.energy;
-  local[kOpen + 5]      = f.work;
-  local[kRemovedMass]   = sim.mpm.diag.removed_mass;
+  local[kOpen + 4]    = f.energy;
+  local[kOpen + 5]    = f.work;
+  local[kRemovedMass] = sim.mpm.diag.removed_mass;
   for (int k = 0; k < 6; ++k) local[kFaceMass + k] = f.face_mass[k / 2][k % 2];
   const auto diagnostics = sim.ice->EnergyDiagnostics(); // kDrag .. kExchangeFallback, in its order
   for (int k = 0; k < IceSolver::kEnergyDiagnostics; ++k) local[kDrag + k] = *diagnostics[k];
@@ -209,9 +227,9 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
     for (int k = 0; k < kNumCouplingCounters; ++k) local[kCoupling + k] = CouplingCounters(*sim.coupling)[k];
   PetscCallMPI(MPI_Allreduce(local, global, kCount, MPIU_REAL, MPI_SUM, sim.comm));
   const PetscReal *counter = global + kCoupling; // the coupling's (coupling.hpp)
-  b.solid_mass   = r.mass;
-  b.gas_mass     = gas.mass;
-  b.open_mass    = global[kOpen];
+  b.solid_mass             = r.mass;
+  b.gas_mass               = gas.mass;
+  b.open_mass              = global[kOpen];
   for (int k = 0; k < 6; ++k) b.open_mass_face[k / 2][k % 2] = global[kFaceMass + k];
   b.removed_mass = global[kRemovedMass] - counter[kBurntParticleMass]; // burnt mass went to the gas
   for (int d = 0; d < 3; ++d) {
@@ -222,17 +240,17 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
     b.bc_impulse[d]       = global[kBcImpulse + d];
     b.removed_momentum[d] = global[kRemovedMomentum + d] - counter[kBurntParticleMomentum + d];
   }
-  b.solid_kinetic     = r.kinetic;
-  b.solid_internal    = r.internal;
-  b.heat_to_particles = counter[kHeatToParticles];
-  b.reactant_thermal  = counter[kBurntParticleThermal];
-  b.gas_kinetic       = gas.kinetic_energy;
-  b.gas_internal      = gas.internal_energy;
-  b.open_energy       = global[kOpen + 4];
-  b.open_work         = global[kOpen + 5];
-  b.removed_energy    = r.removed - counter[kBurntParticleEnergy];
-  b.external_work     = r.external_work;
-  b.chemical          = counter[kChemicalEnergy];
+  b.solid_kinetic           = r.kinetic;
+  b.solid_internal          = r.internal;
+  b.heat_to_particles       = counter[kHeatToParticles];
+  b.reactant_thermal        = counter[kBurntParticleThermal];
+  b.gas_kinetic             = gas.kinetic_energy;
+  b.gas_internal            = gas.internal_energy;
+  b.open_energy             = global[kOpen + 4];
+  b.open_work               = global[kOpen + 5];
+  b.removed_energy          = r.removed - counter[kBurntParticleEnergy];
+  b.external_work           = r.external_work;
+  b.chemical                = counter[kChemicalEnergy];
   b.heat_to_solid_cells     = counter[kHeatToSolidCells];
   b.reactant_thermal_cells  = counter[kReactantThermalCells];
   b.drag_energy_change      = global[kDrag];
@@ -241,30 +259,30 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.advection_energy_change = global[kAdvection];
   // IceBudgetFaces counts what IceSolidCellEnergy moved from a gas to its cell's solids as made by
   // the sources; it is a transfer (the solids' heat_to_solid_cells has it)
-  b.solid_cell_energy_transfer = global[kSolidCell];
-  b.fallback_energy_change  = global[kFallback] + global[kSolidCell];
-  b.trace_energy_change     = global[kTrace];
+  b.solid_cell_energy_transfer  = global[kSolidCell];
+  b.fallback_energy_change      = global[kFallback] + global[kSolidCell];
+  b.trace_energy_change         = global[kTrace];
   b.equilibration_energy_change = global[kEquilibration];
   b.exchange_energy_change      = global[kExchange];
   b.exchange_fallback_energy    = global[kExchangeFallback];
-  b.burnt_particle_energy   = counter[kBurntParticleEnergy];
-  b.kinetic_to_solid_cells  = counter[kKineticToSolidCells];
-  b.kinetic_to_nodes        = counter[kKineticToNodes];
-  b.ambient_stress_work     = counter[kAmbientStressWork];
-  b.pressure_work_charged   = counter[kPressureWorkCharged];
-  b.pressure_work_held      = counter[kPressureWorkHeld];
+  b.burnt_particle_energy       = counter[kBurntParticleEnergy];
+  b.kinetic_to_solid_cells      = counter[kKineticToSolidCells];
+  b.kinetic_to_nodes            = counter[kKineticToNodes];
+  b.ambient_stress_work         = counter[kAmbientStressWork];
+  b.pressure_work_charged       = counter[kPressureWorkCharged];
+  b.pressure_work_held          = counter[kPressureWorkHeld];
   for (int d = 0; d < 3; ++d) {
     b.momentum_to_solid_cells[d] = counter[kMomentumToSolidCells + d];
     b.momentum_to_nodes[d]       = counter[kMomentumToNodes + d];
   }
   b.mass = b.solid_mass + b.gas_mass + b.open_mass + b.removed_mass;
   for (int d = 0; d < 3; ++d) b.momentum[d] = b.solid_momentum[d] + b.gas_momentum[d] + b.open_momentum[d] + b.removed_momentum[d] - b.face_impulse[d] - b.bc_impulse[d];
-  b.energy = b.solid_kinetic + b.solid_internal + b.heat_to_particles - b.reactant_thermal + b.gas_kinetic + b.gas_internal + b.open_energy + b.open_work + b.removed_energy - b.external_work - b.chemical;
+  b.energy        = b.solid_kinetic + b.solid_internal + b.heat_to_particles - b.reactant_thermal + b.gas_kinetic + b.gas_internal + b.open_energy + b.open_work + b.removed_energy - b.external_work - b.chemical;
   PetscReal *init = sim.mpm.diag.budget_initial, *scale = sim.mpm.diag.budget_scale;
   if (initial) {
     init[0] = b.mass;
     for (int d = 0; d < 3; ++d) init[1 + d] = b.momentum[d];
-    init[4] = b.energy;
+    init[4]  = b.energy;
     scale[0] = scale[1] = scale[2] = 0;
   }
   const PetscReal mass_terms[] = {b.solid_mass, b.gas_mass, b.open_mass, b.removed_mass};
@@ -281,7 +299,6 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 } // namespace
-
 
 // A restarted run continues monitor.csv: the rows up to the checkpoint's step are kept (a killed run
 // may have written later ones), then new rows are appended.
@@ -314,7 +331,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
   EnergyReport r;
   PetscFunctionBeginUser;
   if (sim.output.track_by_point && !sim.restarted) PetscCall(NearestParticle(sim)); // a restart keeps the traced id
-  if (!sim.restarted) { // a restart keeps the initial energy and the scale of the balance
+  if (!sim.restarted) {                                                             // a restart keeps the initial energy and the scale of the balance
     PetscCall(ComputeEnergies(sim, r));
     sim.mpm.diag.initial_energy  = r.total - r.external_work;
     sim.mpm.diag.initial_kinetic = r.kinetic;
@@ -340,12 +357,14 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     if (sim.output.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
     if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure");
     if (sim.ice) // the budgets (ComputeBudget); balance_error is the energy budget's
-      std::fprintf(csv, ",open_face_mass,removed_particle_mass,mass_budget_error"
-                        ",open_face_momentum_x,open_face_momentum_y,open_face_momentum_z,face_pressure_impulse_x,face_pressure_impulse_y,face_pressure_impulse_z"
-                        ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
-                        ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
-                        ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                        ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,solid_cell_energy_transfer,ambient_stress_work,pressure_work_charged,pressure_work_held");
+      std::fprintf(csv,
+                   ",open_face_mass,removed_particle_mass,mass_budget_error"
+                   ",open_face_momentum_x,open_face_momentum_y,open_face_momentum_z,face_pressure_impulse_x,face_pressure_impulse_y,face_pressure_impulse_z"
+                   ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
+                   ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
+                   ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
+                   ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_"
+                   "energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,solid_cell_energy_transfer,ambient_stress_work,pressure_work_charged,pressure_work_held");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     if (sim.phases.Enabled()) { // the fire's histories (src/phases.hpp)
       std::fprintf(csv, ",phase");
@@ -393,22 +412,28 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     sim.ice->peak_pressure      = gas.max_pressure;
     sim.ice->peak_pressure_time = sim.time;
   }
-  PetscBool expansion = PETSC_FALSE;
+  PetscBool expansion          = PETSC_FALSE;
   PetscReal expansion_velocity = 0;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim.mpm, &expansion, &expansion_velocity));
   std::vector<PetscReal> phase_temperatures; // per material: the hottest particle, the mass-weighted mean
   if (sim.phases.Enabled()) PetscCall(PhasesTemperatures(sim, phase_temperatures));
-  if (sim.HasParticles()) PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work), (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
-  else PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy, (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
+  if (sim.HasParticles())
+    PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %12.5e %12.5e %12.5e %11.3e %12.5e %12.5e\n", sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)(r.total - r.external_work),
+                          (double)balance_error, (double)r.momentum[0], (double)r.momentum[1]));
+  else
+    PetscCall(PetscPrintf(sim.comm, "%8" PetscInt_FMT " %12.5e %11.4e %14.7e %12.5e %12.5e %14.7e %12.5e %12.5e %6" PetscInt_FMT "\n", sim.step, (double)sim.time, (double)sim.dt, (double)gas.mass, (double)gas.kinetic_energy,
+                          (double)gas.internal_energy, (double)(gas.kinetic_energy + gas.internal_energy), (double)gas.momentum[0], (double)gas.momentum[1], sim.ice->ksp_iterations));
   if (!sim.rank && sim.output.monitor_csv) {
     FILE *csv = sim.output.monitor_csv;
-    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed, (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.mpm.total_particles);
+    std::fprintf(csv, "%d,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%.12e,%lld", (int)sim.step, (double)sim.time, (double)sim.dt, (double)r.kinetic, (double)r.internal, (double)r.external_work, (double)r.removed,
+                 (double)r.total, (double)balance_error, (double)r.momentum[0], (double)r.momentum[1], (double)r.momentum[2], (double)r.mass, (long long)sim.mpm.total_particles);
     std::fprintf(csv, ",%.12e,%.12e,%.12e,%.12e,%.12e,%.12e", (double)r.failure_energy, (double)r.plastic_work, (double)r.heat, (double)r.viscous_work, (double)r.stored_elastic, (double)r.unaccounted);
     if (sim.analytic) std::fprintf(csv, ",%.12e,%.12e", (double)rms, (double)max);
     if (sim.output.track_pid >= 0)
       for (int k = 0; k < 9; ++k) std::fprintf(csv, ",%.12e", (double)track[k]);
     if (sim.ice)
-      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy, (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
+      std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy,
+                   (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
     if (sim.ice) std::fprintf(csv, ",%.12e", (double)gas.max_pressure);
     if (sim.ice) {
       std::fprintf(csv, ",%.16e,%.16e,%.6e", (double)b.open_mass, (double)b.removed_mass, (double)b.mass_error);
@@ -440,7 +465,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(ComputeEnergies(sim, r));
   const PetscInt bytes = sim.mpm.swarm_bytes;
-  PetscReal rms = 0, max = 0;
+  PetscReal      rms = 0, max = 0;
   if (sim.analytic) PetscCall(AnalyticDisplacementError(sim, &rms, &max));
   PetscReal Trms = 0, Tmax = 0;
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(AnalyticTemperatureError(sim, &Trms, &Tmax));
@@ -448,13 +473,13 @@ PetscErrorCode WriteSummary(Simulation &sim)
   Budget    b;
   if (sim.ice) PetscCall(IceComputeTotals(*sim.ice, gas));
   if (sim.ice) PetscCall(ComputeBudget(sim, r, gas, false, b));
-  const PetscReal balance_error = sim.ice ? b.energy_error : r.balance_error; // with gas: the whole system's
-  PetscReal  burnt_mass      = 0;
-  PetscInt64 burnt_particles = 0;
+  const PetscReal balance_error   = sim.ice ? b.energy_error : r.balance_error; // with gas: the whole system's
+  PetscReal       burnt_mass      = 0;
+  PetscInt64      burnt_particles = 0;
   if (sim.coupling) PetscCall(CouplingSummary(*sim.coupling, &burnt_mass, &burnt_particles));
   PetscReal surface_heat = 0; // J the solids took from the gas by -coupling_surface_heat_transfer
   if (sim.coupling) PetscCall(CouplingSurfaceHeatTotal(*sim.coupling, &surface_heat));
-  PetscInt64 fallbacks = 0; // cells that fell back to the -p dV energy form
+  PetscInt64 fallbacks       = 0; // cells that fell back to the -p dV energy form
   PetscInt64 fallbacks_remap = 0; // of those, the advection's internal-energy remap
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks, &fallbacks, 1, MPIU_INT64, MPI_SUM, sim.comm));
   if (sim.ice) PetscCallMPI(MPI_Allreduce(&sim.ice->energy_fallbacks_remap, &fallbacks_remap, 1, MPIU_INT64, MPI_SUM, sim.comm));
@@ -470,7 +495,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
     const char   *name;
     PetscLogEvent event;
   };
-  const Phase phases[] = {{"p2g", sim.mpm.ev_p2g}, {"ghost_sums", sim.mpm.ev_ghost_sums}, {"grid_update", sim.mpm.ev_grid}, {"g2p", sim.mpm.ev_g2p}, {"remap", sim.mpm.ev_remap}, {"stress", sim.mpm.ev_stress}, {"migrate", sim.mpm.ev_migrate}, {"time_step", sim.mpm.ev_dt}};
+  const Phase         phases[]   = {{"p2g", sim.mpm.ev_p2g},     {"ghost_sums", sim.mpm.ev_ghost_sums}, {"grid_update", sim.mpm.ev_grid}, {"g2p", sim.mpm.ev_g2p},
+                                    {"remap", sim.mpm.ev_remap}, {"stress", sim.mpm.ev_stress},         {"migrate", sim.mpm.ev_migrate},  {"time_step", sim.mpm.ev_dt}};
   constexpr int       num_phases = sizeof(phases) / sizeof(phases[0]);
   PetscBool           logging    = PETSC_FALSE;
   std::vector<double> rank_phase_seconds; // [rank][phase], on rank 0
@@ -572,7 +598,10 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
     s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
-    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy << ", \"solid_cell_energy_transfer\": " << b.solid_cell_energy_transfer << ", \"burnt_particles\": " << b.burnt_particle_energy;
+    s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work
+      << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change
+      << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy
+      << ", \"solid_cell_energy_transfer\": " << b.solid_cell_energy_transfer << ", \"burnt_particles\": " << b.burnt_particle_energy;
     s << ", \"ambient_stress_work\": " << b.ambient_stress_work << ", \"pressure_work_charged\": " << b.pressure_work_charged << ", \"pressure_work_held\": " << b.pressure_work_held << "}\n";
     s << "  },\n";
   }
@@ -589,7 +618,8 @@ PetscErrorCode WriteSummary(Simulation &sim)
     const Grid &g = sim.mpm.grid;
     s << "  \"node_ranges\": {";
     for (PetscInt d = 0; d < 3; ++d) {
-      s << (d ? ", " : "") << "\"" << "xyz"[d] << "\": [";
+      s << (d ? ", " : "") << "\""
+        << "xyz"[d] << "\": [";
       for (PetscMPIInt r = 0; r < g.procs[d]; ++r) s << (r ? ", " : "") << (g.start[d].size() > (size_t)r + 1 ? g.start[d][r + 1] - g.start[d][r] : 0);
       s << "]";
     }
@@ -608,12 +638,17 @@ PetscErrorCode WriteSummary(Simulation &sim)
     PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s", tmp.c_str());
   }
   PetscCheck(std::rename(tmp.c_str(), path.c_str()) == 0, PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not rename %s", tmp.c_str());
-  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.run.scene.c_str(), sim.step, (double)sim.time, (long long)sim.mpm.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
-  if (sim.ice) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass), (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)), (double)(sim.wall_stepping > 0 ? (PetscReal)sim.mpm.grid.cells[0] * sim.mpm.grid.cells[1] * (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
+  PetscCall(PetscPrintf(PETSC_COMM_SELF, "Summary: %s, %" PetscInt_FMT " steps to t = %g s, %lld particles on %d rank(s), energy balance error %.3e, %.3g particle-steps/s per core; wrote %s\n", sim.run.scene.c_str(), sim.step, (double)sim.time,
+                        (long long)sim.mpm.total_particles, sim.size, (double)balance_error, (double)(rate / sim.size), path.c_str()));
+  if (sim.ice)
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Gas: mass change %.3e, total energy change %.3e (relative), %.3g cell-steps/s per core\n", (double)((gas.mass - sim.ice->initial.mass) / sim.ice->initial.mass),
+                          (double)((gas.internal_energy + gas.kinetic_energy - sim.ice->initial.internal_energy - sim.ice->initial.kinetic_energy) / (sim.ice->initial.internal_energy + sim.ice->initial.kinetic_energy)),
+                          (double)(sim.wall_stepping > 0 ? (PetscReal)sim.mpm.grid.cells[0] * sim.mpm.grid.cells[1] * (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1) * sim.step / sim.wall_stepping / sim.size : 0.0)));
   if (sim.ice) {
     char chemical[128] = "";
     if (b.chemical > 0) std::snprintf(chemical, sizeof(chemical), ", %.3e of the chemical energy released (%.4g J)", (double)(b.energy_residual / b.chemical), (double)b.chemical);
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Budgets (particles, gases, open faces, removed particles, chemical energy): mass error %.3e, momentum %.3e, energy %.3e of the largest term (%.4g kg, %.4g kg m/s, %.4g J); energy residual %.4g J%s\n", (double)b.mass_error, (double)b.momentum_error, (double)b.energy_error, (double)sim.mpm.diag.budget_scale[0], (double)sim.mpm.diag.budget_scale[1], (double)sim.mpm.diag.budget_scale[2], (double)b.energy_residual, chemical));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Budgets (particles, gases, open faces, removed particles, chemical energy): mass error %.3e, momentum %.3e, energy %.3e of the largest term (%.4g kg, %.4g kg m/s, %.4g J); energy residual %.4g J%s\n",
+                          (double)b.mass_error, (double)b.momentum_error, (double)b.energy_error, (double)sim.mpm.diag.budget_scale[0], (double)sim.mpm.diag.budget_scale[1], (double)sim.mpm.diag.budget_scale[2], (double)b.energy_residual, chemical));
   }
   if (sim.analytic) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: displacement error rms %.4e m, max %.4e m at t = %g s\n", sim.analytic->Name(), (double)rms, (double)max, (double)sim.time));
   if (sim.analytic && sim.analytic->HasTemperature()) PetscCall(PetscPrintf(PETSC_COMM_SELF, "Analytic %s: temperature error rms %.4e K, max %.4e K\n", sim.analytic->Name(), (double)Trms, (double)Tmax));

@@ -54,7 +54,7 @@ PetscErrorCode AtomicRename(MPI_Comm comm, const std::string &tmp, const std::st
 // adds what the user needs: the files that were being written (the *.tmp of -output_dir, removed so
 // that no partial file is left) and whether the disk is full, then hands over to PETSc's traceback.
 namespace {
-std::string disk_full_dir; // -output_dir, set by OutputPushWriteErrorHandler
+std::string    disk_full_dir; // -output_dir, set by OutputPushWriteErrorHandler
 PetscErrorCode WriteErrorHandler(MPI_Comm comm, int line, const char *fun, const char *file, PetscErrorCode n, PetscErrorType p, const char *mess, void *ctx)
 {
   const bool write_error = p == PETSC_ERROR_INITIAL && (n == PETSC_ERR_FILE_WRITE || n == PETSC_ERR_FILE_OPEN || (n == PETSC_ERR_LIB && mess && std::strstr(mess, "HDF5")));
@@ -162,7 +162,7 @@ static std::vector<ParticleOutputField> ModelFields(const Simulation &sim)
 
 static std::vector<ParticleOutputField> ParticleFields(const Simulation &sim)
 {
-  const PetscInt                   dim = sim.mpm.grid.dim;
+  const PetscInt                   dim    = sim.mpm.grid.dim;
   std::vector<ParticleOutputField> fields = {
     {DMSwarmPICField_coor, "coordinates", dim, dim, false, false},
     {field::velocity, "velocity", dim, 3, false, false},
@@ -191,7 +191,8 @@ static std::string XdmfParticleGrid(const Simulation &sim, const std::string &fi
   std::ostringstream s;
   s << "    <Grid Name=\"particles\" GridType=\"Uniform\">\n      <Time Value=\"" << time << "\"/>\n";
   s << "      <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n << "\" NodesPerElement=\"1\"/>\n";
-  s << "      <Geometry GeometryType=\"" << (dim == 2 ? "XY" : "XYZ") << "\">\n        <DataItem Dimensions=\"" << n << " " << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file << ":/particles/coordinates</DataItem>\n      </Geometry>\n";
+  s << "      <Geometry GeometryType=\"" << (dim == 2 ? "XY" : "XYZ") << "\">\n        <DataItem Dimensions=\"" << n << " " << dim << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << file
+    << ":/particles/coordinates</DataItem>\n      </Geometry>\n";
   for (const auto &f : ParticleFields(sim)) {
     if (f.swarm_name == DMSwarmPICField_coor) continue;
     const char *type = f.out_bs == 1 ? "Scalar" : (f.out_bs == 3 ? "Vector" : "Tensor");

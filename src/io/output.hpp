@@ -8,7 +8,7 @@
 
 namespace burst {
 
-struct OutputRecord {  // one entry of particles.xmf
+struct OutputRecord { // one entry of particles.xmf
   PetscInt   step;
   PetscReal  time;
   PetscInt64 particles;
@@ -41,7 +41,7 @@ struct Output {
   PetscLogEvent ev_output = 0, ev_monitor = 0;
 
   bool IntervalDue(PetscInt step) const { return interval > 0 && step % interval == 0; } // an output step of -output_interval
-  void Checkpoint(CheckpointValues &values); // its numbers' part of a checkpoint (output.cxx; the series are the checkpoint's own)
+  void Checkpoint(CheckpointValues &values);                                             // its numbers' part of a checkpoint (output.cxx; the series are the checkpoint's own)
 };
 
 } // namespace burst

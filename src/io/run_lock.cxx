@@ -29,9 +29,9 @@ namespace burst {
 
 namespace {
 std::string lock_path;
-bool        held       = false;
-pid_t       holder_pid = 0;
-time_t      last_touch = 0;
+bool        held          = false;
+pid_t       holder_pid    = 0;
+time_t      last_touch    = 0;
 PetscReal   stale_seconds = 3600; // -output_lock_stale_time
 
 std::string HostName()
@@ -44,10 +44,10 @@ std::string HostName()
 // The file name of a process's executable ("" if unknown: no /proc, or not ours to read).
 std::string ProgramOf(const std::string &pid)
 {
-  char      buf[4096];
+  char          buf[4096];
   const ssize_t n = readlink(("/proc/" + pid + "/exe").c_str(), buf, sizeof(buf) - 1);
   if (n <= 0) return "";
-  std::string exe(buf, (size_t)n);
+  std::string  exe(buf, (size_t)n);
   const size_t del = exe.find(" (deleted)"); // a rebuilt executable
   if (del != std::string::npos) exe.resize(del);
   return exe.substr(exe.find_last_of('/') + 1);
@@ -77,13 +77,13 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
   for (int attempt = 0; attempt < 3; ++attempt) {
     const int fd = open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0644);
     if (fd >= 0) {
-      char      text[512];
+      char         text[512];
       const time_t now = time(nullptr);
-      char      when[64];
+      char         when[64];
       std::strftime(when, sizeof(when), "%Y-%m-%d %H:%M:%S UTC", std::gmtime(&now));
       const std::string program = ProgramOf("self");
-      const int n  = std::snprintf(text, sizeof(text), "host %s\npid %ld\nstarted %s\nprogram %s\n", host.c_str(), (long)getpid(), when, program.empty() ? "burst" : program.c_str());
-      const bool ok = write(fd, text, (size_t)n) == n;
+      const int         n       = std::snprintf(text, sizeof(text), "host %s\npid %ld\nstarted %s\nprogram %s\n", host.c_str(), (long)getpid(), when, program.empty() ? "burst" : program.c_str());
+      const bool        ok      = write(fd, text, (size_t)n) == n;
       close(fd);
       if (!ok) {
         unlink(path.c_str());
@@ -124,8 +124,8 @@ int TryAcquire(const std::string &path, double stale_seconds, std::string &why, 
       reason = "host " + their_host + " has not touched it for " + std::to_string((long)age) + " s (-output_lock_stale_time " + std::to_string((long)stale_seconds) + ")";
     }
     if (alive) {
-      why = "it is in use by another run: host " + (their_host.empty() ? std::string("(unknown)") : their_host) + ", pid " + (their_pid > 0 ? std::to_string(their_pid) : std::string("(unknown)")) + (started.empty() ? std::string() : ", started " + started) +
-            " (lock file " + path + "). Wait for that run to end or choose another -output_dir; if that run is gone, remove the lock file";
+      why = "it is in use by another run: host " + (their_host.empty() ? std::string("(unknown)") : their_host) + ", pid " + (their_pid > 0 ? std::to_string(their_pid) : std::string("(unknown)")) +
+            (started.empty() ? std::string() : ", started " + started) + " (lock file " + path + "). Wait for that run to end or choose another -output_dir; if that run is gone, remove the lock file";
       return 1;
     }
     note += "Note: taking over the stale lock " + path + " of host " + (their_host.empty() ? std::string("(unknown)") : their_host) + ", pid " + std::to_string(their_pid) + ": " + reason + "\n";
@@ -140,7 +140,9 @@ PetscErrorCode RunLockSetUp(Simulation &sim)
 {
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Output folder lock", "Output");
-  PetscCall(PetscOptionsReal("-output_lock_stale_time", "Age (s) after which another host's lock on -output_dir (output_dir/.burst.lock) counts as left by a dead run and is taken over, > 0 (a lock of this host is stale as soon as its process is gone)", "", stale_seconds, &stale_seconds, nullptr));
+  PetscCall(PetscOptionsReal("-output_lock_stale_time",
+                             "Age (s) after which another host's lock on -output_dir (output_dir/.burst.lock) counts as left by a dead run and is taken over, > 0 (a lock of this host is stale as soon as its process is gone)", "", stale_seconds,
+                             &stale_seconds, nullptr));
   PetscOptionsEnd();
   PetscCall(CheckRange(sim.comm, "-output_lock_stale_time", stale_seconds, 0, PETSC_MAX_REAL, PETSC_TRUE));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -156,10 +158,10 @@ PetscErrorCode RunLockAcquire(Simulation &sim)
   if (!sim.rank) {
     status = TryAcquire(path, stale, why, note);
     if (status == 0) {
-      lock_path  = path;
-      held       = true;
-      holder_pid = getpid();
-      last_touch = time(nullptr);
+      lock_path              = path;
+      held                   = true;
+      holder_pid             = getpid();
+      last_touch             = time(nullptr);
       static bool registered = false;
       if (!registered) registered = std::atexit(ReleaseAtExit) == 0;
     }

@@ -52,9 +52,10 @@ struct UnionFind {
 
 // Hash grid over points: key of the cell of x.
 struct HashGrid {
-  PetscReal cell;
-  PetscInt  dim;
+  PetscReal                                            cell;
+  PetscInt                                             dim;
   std::unordered_map<long long, std::vector<PetscInt>> cells;
+
   long long Key(const PetscInt c[3]) const { return ((long long)(c[0] + (1 << 20)) << 42) ^ ((long long)(c[1] + (1 << 20)) << 21) ^ (long long)(c[2] + (1 << 20)); }
   void      Cell(const PetscReal x[], PetscInt c[3]) const
   {
@@ -92,7 +93,7 @@ bool FitCumulative(std::vector<PetscReal> masses, PetscReal (*f)(PetscReal), Pet
 {
   if (masses.size() < 3) return false;
   std::sort(masses.begin(), masses.end(), std::greater<PetscReal>());
-  PetscReal sx = 0, sy = 0, sxx = 0, sxy = 0;
+  PetscReal       sx = 0, sy = 0, sxx = 0, sxy = 0;
   const PetscReal n = (PetscReal)masses.size();
   for (size_t k = 0; k < masses.size(); ++k) {
     const PetscReal x = f(masses[k]), y = std::log((PetscReal)(k + 1));
@@ -117,7 +118,8 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
   PetscCall(PetscOptionsReal("-fragments_distance_factor", "Neighbours: |x_i - x_j| < factor (s_i + s_j)/2, s = particle size V^(1/dim) (-), > 0", "", frag.options.distance_factor, &frag.options.distance_factor, nullptr));
   PetscCall(CheckRange(mpm.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", frag.options.min_particles, &frag.options.min_particles, nullptr));
-  PetscCall(PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
+  PetscCall(
+    PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
   PetscCall(CheckRange(mpm.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
   {
     char     *names[32];
@@ -127,7 +129,7 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
     if (set) {
       frag.options.counted.assign(mpm.materials.size(), 0);
       for (PetscInt i = 0; i < n; ++i) {
-        PetscInt found = -1;
+        PetscInt    found = -1;
         std::string valid;
         for (size_t m = 0; m < mpm.materials.size(); ++m) {
           valid += (m ? ", " : "") + std::string(mpm.materials[m]->Name());
@@ -153,8 +155,9 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
   PetscCall(PetscOptionsReal("-grady_shear_rate", "Shear strain rate of Gamma_S (1/s)", "", frag.options.shear_rate, &frag.options.shear_rate, nullptr));
   PetscOptionsEnd();
   if (frag.options.grady) {
-    const char *names[]  = {"-grady_radius", "-grady_density", "-grady_youngs_modulus", "-grady_fracture_toughness", "-grady_specific_heat", "-grady_thermal_expansion", "-grady_thermal_diffusivity", "-grady_yield_stress", "-grady_shear_rate"};
-    const PetscReal v[] = {frag.options.radius, frag.options.density, frag.options.youngs_modulus, frag.options.toughness, frag.options.specific_heat, frag.options.expansion, frag.options.diffusivity, frag.options.yield_stress, frag.options.shear_rate};
+    const char     *names[] = {"-grady_radius", "-grady_density", "-grady_youngs_modulus", "-grady_fracture_toughness", "-grady_specific_heat", "-grady_thermal_expansion", "-grady_thermal_diffusivity", "-grady_yield_stress", "-grady_shear_rate"};
+    const PetscReal v[]     = {frag.options.radius,    frag.options.density,     frag.options.youngs_modulus, frag.options.toughness, frag.options.specific_heat,
+                               frag.options.expansion, frag.options.diffusivity, frag.options.yield_stress,   frag.options.shear_rate};
     for (int i = 0; i < 9; ++i) PetscCall(CheckRange(mpm.comm, names[i], v[i], 0, PETSC_MAX_REAL, PETSC_TRUE));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -174,7 +177,7 @@ bool SwarmHasModelField(const MpmSolver &mpm, const char name[])
 static void GradyEnergies(const FragmentOptions &o, PetscReal &tension, PetscReal &shear)
 {
   tension = o.toughness * o.toughness / (2 * o.youngs_modulus);
-  shear = o.density * o.specific_heat / o.expansion * std::pow(9 * std::pow(o.density, 3) * o.specific_heat * o.specific_heat * std::pow(o.diffusivity, 3) / (std::pow(o.yield_stress, 3) * o.expansion * o.expansion * o.shear_rate), 0.25);
+  shear   = o.density * o.specific_heat / o.expansion * std::pow(9 * std::pow(o.density, 3) * o.specific_heat * o.specific_heat * std::pow(o.diffusivity, 3) / (std::pow(o.yield_stress, 3) * o.expansion * o.expansion * o.shear_rate), 0.25);
 }
 
 // Eq. 25: N = 2 pi (rho R0 V^2 / (24 Gamma))^(1/3) for the whole cylinder.
@@ -186,6 +189,7 @@ static PetscReal GradyCount(const FragmentOptions &o, PetscReal gamma, PetscReal
 static PetscErrorCode MeanRadialVelocity(MpmSolver &mpm, PetscReal *velocity, PetscReal *failed_count)
 {
   Fragments &frag = mpm.fragments;
+
   SwarmAccess      fields(mpm.swarm);
   const PetscInt  *failed = nullptr, *softening = nullptr, *material;
   const PetscReal *x, *v, *m;
@@ -222,7 +226,7 @@ static PetscErrorCode MeanRadialVelocity(MpmSolver &mpm, PetscReal *velocity, Pe
 PetscErrorCode FragmentsMonitor(MpmSolver &mpm)
 {
   Fragments &frag = mpm.fragments;
-  PetscReal velocity, failed;
+  PetscReal  velocity, failed;
   PetscFunctionBeginUser;
   if (!frag.options.grady || frag.fracture_velocity >= 0 || !SwarmHasModelField(mpm, state_field::failed)) PetscFunctionReturn(PETSC_SUCCESS);
   PetscCall(MeanRadialVelocity(mpm, &velocity, &failed));
@@ -246,12 +250,13 @@ PetscErrorCode FragmentsExpansionVelocity(MpmSolver &mpm, PetscBool *enabled, Pe
 
 PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
 {
-  Fragments &frag = mpm.fragments;
-  const PetscInt dim = mpm.grid.dim;
+  Fragments     &frag = mpm.fragments;
+  const PetscInt dim  = mpm.grid.dim;
   PetscInt       n;
   PetscFunctionBeginUser;
   if (!frag.options.enabled) PetscFunctionReturn(PETSC_SUCCESS);
-  const bool       has_failed = SwarmHasModelField(mpm, state_field::failed);
+  const bool has_failed = SwarmHasModelField(mpm, state_field::failed);
+
   SwarmAccess      fields(mpm.swarm);
   const PetscReal *x, *v, *m, *V;
   const PetscInt  *failed = nullptr, *material;
@@ -372,12 +377,12 @@ PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
   PetscCallMPI(MPI_Bcast(fragment_of.data(), total_labels, MPIU_INT, 0, mpm.comm));
 
   // fragment sums: particles, mass, momentum, first moment, second moment (xx, xy, xz, yy, yz, zz)
-  const int             nsum = 2 + 2 * 3 + 6;
+  const int              nsum = 2 + 2 * 3 + 6;
   std::vector<PetscReal> sums((size_t)nsum * nfragments, 0), total(mpm.rank ? 0 : (size_t)nsum * nfragments);
   for (PetscInt a = 0; a < ni; ++a) {
     const PetscInt p = intact[a], fr = fragment_of[label_of(a)];
-    fragment[p]      = fr;
-    PetscReal *s     = &sums[(size_t)nsum * fr];
+    fragment[p]  = fr;
+    PetscReal *s = &sums[(size_t)nsum * fr];
     s[0] += 1;
     s[1] += m[p];
     for (PetscInt d = 0; d < dim; ++d) {
@@ -432,7 +437,8 @@ PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
     }
   }
   PetscCallMPI(MPI_Bcast(&frag.last_count, 1, MPIU_INT64, 0, mpm.comm));
-  PetscCall(PetscPrintf(mpm.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)mpm.time, frag.last_count, frag.options.min_particles, (double)frag.options.min_mass_fraction, nfragments, (double)frag.largest_mass, (double)frag.total_intact_mass));
+  PetscCall(PetscPrintf(mpm.comm, "Fragments at t = %g s: %" PetscInt64_FMT " with at least %" PetscInt_FMT " particles and %g of the mass (%" PetscInt_FMT " components in all), largest %.4g kg of %.4g kg intact\n", (double)mpm.time, frag.last_count,
+                        frag.options.min_particles, (double)frag.options.min_mass_fraction, nfragments, (double)frag.largest_mass, (double)frag.total_intact_mass));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -451,10 +457,14 @@ PetscErrorCode FragmentsSummary(const MpmSolver &mpm, std::ostream &out)
     // the counted fragments' cumulative mass distribution fitted (fewer than three: null)
     PetscReal N0, slope;
     out << "  \"fragment_mass_fit\": {\"mott\": ";
-    if (FitCumulative(frag.counted_masses, [](PetscReal m) { return std::sqrt(m); }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << 1 / (slope * slope) << "}";
+    if (FitCumulative(
+          frag.counted_masses, [](PetscReal m) { return std::sqrt(m); }, &N0, &slope))
+      out << "{\"N0\": " << N0 << ", \"mu\": " << 1 / (slope * slope) << "}";
     else out << "null";
     out << ", \"grady_kipp\": ";
-    if (FitCumulative(frag.counted_masses, [](PetscReal m) { return m; }, &N0, &slope)) out << "{\"N0\": " << N0 << ", \"mu\": " << -1 / slope << "}";
+    if (FitCumulative(
+          frag.counted_masses, [](PetscReal m) { return m; }, &N0, &slope))
+      out << "{\"N0\": " << N0 << ", \"mu\": " << -1 / slope << "}";
     else out << "null";
     out << "},\n";
   }
@@ -468,7 +478,8 @@ PetscErrorCode FragmentsSummary(const MpmSolver &mpm, std::ostream &out)
     out << "  \"fracture_time\": " << frag.fracture_time << ",\n";
     if (V > 0) {
       const PetscReal fraction = frag.options.sector / 360.0;
-      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Grady-Hightower for V = %.1f m/s at the first failure (t = %g s): %.2f (shear) to %.2f (tension) fragments on the modelled %g degrees; found %" PetscInt64_FMT "\n", (double)V, (double)frag.fracture_time, (double)(fraction * GradyCount(frag.options, shear, V)), (double)(fraction * GradyCount(frag.options, tension, V)), (double)frag.options.sector, frag.last_count));
+      PetscCall(PetscPrintf(PETSC_COMM_SELF, "Grady-Hightower for V = %.1f m/s at the first failure (t = %g s): %.2f (shear) to %.2f (tension) fragments on the modelled %g degrees; found %" PetscInt64_FMT "\n", (double)V, (double)frag.fracture_time,
+                            (double)(fraction * GradyCount(frag.options, shear, V)), (double)(fraction * GradyCount(frag.options, tension, V)), (double)frag.options.sector, frag.last_count));
       out << "  \"grady_tension\": {\"whole\": " << GradyCount(frag.options, tension, V) << ", \"sector\": " << fraction * GradyCount(frag.options, tension, V) << "},\n";
       out << "  \"grady_shear\": {\"whole\": " << GradyCount(frag.options, shear, V) << ", \"sector\": " << fraction * GradyCount(frag.options, shear, V) << "},\n";
     } else {

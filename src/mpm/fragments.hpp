@@ -7,14 +7,15 @@
 namespace burst {
 
 struct FragmentOptions {
-  PetscBool enabled         = PETSC_FALSE;
-  PetscReal distance_factor = 1.5;
-  PetscInt  min_particles   = 4;
-  PetscReal min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
-  std::vector<char> counted;         // per material: part of the fragments (-fragments_materials; empty: all)
-  bool      Counts(PetscInt material) const { return counted.empty() || counted[material]; }
+  PetscBool         enabled           = PETSC_FALSE;
+  PetscReal         distance_factor   = 1.5;
+  PetscInt          min_particles     = 4;
+  PetscReal         min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
+  std::vector<char> counted;               // per material: part of the fragments (-fragments_materials; empty: all)
+
+  bool Counts(PetscInt material) const { return counted.empty() || counted[material]; }
   // Grady-Hightower (eqs. 25-26)
-  PetscBool grady = PETSC_FALSE;
+  PetscBool grady     = PETSC_FALSE;
   PetscReal center[3] = {0, 0, 0}, radius = 0, sector = 360;
   PetscReal density = 0, youngs_modulus = 0, toughness = 0, specific_heat = 0, expansion = 0, diffusivity = 0, yield_stress = 0, shear_rate = 0;
 };
@@ -24,11 +25,12 @@ class CheckpointValues; // src/io/checkpoint_values.hpp
 struct Fragments {
   FragmentOptions        options;
   PetscReal              fracture_velocity = -1, fracture_time = -1; // measured at the first failure
-  PetscInt64             last_count        = 0;
-  PetscReal              initial_mass      = -1; // total mass at the first search
+  PetscInt64             last_count   = 0;
+  PetscReal              initial_mass = -1; // total mass at the first search
   PetscReal              largest_mass = 0, total_intact_mass = 0;
   std::vector<PetscReal> counted_masses; // rank 0: the counted fragments' masses at the last search, kg
-  void                   Checkpoint(CheckpointValues &values); // its part of a checkpoint (fragments.cxx)
+
+  void Checkpoint(CheckpointValues &values); // its part of a checkpoint (fragments.cxx)
 };
 
 } // namespace burst

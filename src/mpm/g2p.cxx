@@ -20,7 +20,7 @@ namespace burst {
 
 namespace {
 struct G2PKernel {
-  MpmSolver        &mpm;
+  MpmSolver         &mpm;
   G2PRequest         what;
   const PetscScalar *vel;
   const PetscScalar *star; // XPIC: ghosted v* per velocity field, laid out as vel (first DIM of each 2 DIM)
@@ -70,8 +70,8 @@ struct G2PKernel {
   template <int DIM, ShapeType S, bool AXI, Transfer TR, bool DV, bool GRAD>
   PetscErrorCode Loop()
   {
-    constexpr bool APIC = TR == Transfer::APIC, XPIC = TR == Transfer::XPIC;
-    const Grid          &g = mpm.grid;
+    constexpr bool       APIC = TR == Transfer::APIC, XPIC = TR == Transfer::XPIC;
+    const Grid          &g    = mpm.grid;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
     const LocalNodeIndex index(g);
     const PetscReal      flip = mpm.flip_fraction, dt = mpm.dt;
@@ -115,15 +115,15 @@ struct G2PKernel {
           for (int a = 0; a < 9; ++a) L[9 * p + a] = 0;
         continue;
       }
-      PetscReal      dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
-      const PetscReal r_old = x[DIM * p]; // axisymmetric: the radius the weights were evaluated at
-      const PetscInt vf = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
+      PetscReal       dv[DIM] = {}, vnew[DIM] = {}, grad[DIM][DIM] = {}, B[DIM][DIM] = {}, D[DIM][DIM] = {}, vs[DIM] = {};
+      const PetscReal r_old = x[DIM * p];                                                                             // axisymmetric: the radius the weights were evaluated at
+      const PetscInt  vf    = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles read their own fields
       // grad[a][0..1] as one pair of doubles per row: the same products and sums, lane by lane (the
       // scalar form keeps 12 accumulators live in 3-D and spills)
       Pair grad01[DIM] = {};
-      auto gather = [&](PetscInt at, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
+      auto gather      = [&](PetscInt at, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
         (void)i, (void)j, (void)k; // APIC only: the node position
-        const PetscScalar *nv = vel + at + vf * 2 * DIM;
+        const PetscScalar *nv  = vel + at + vf * 2 * DIM;
         const Pair         d01 = {dN[0], dN[1]};
         for (int a = 0; a < DIM; ++a) {
           if constexpr (DV) dv[a] += N * (nv[DIM + a] - nv[a]);
@@ -148,8 +148,7 @@ struct G2PKernel {
             }
         }
       };
-      if constexpr (APIC && S != ShapeType::Linear)
-        ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { gather(index(i, j, k) * vdof, i, j, k, N, dN); });
+      if constexpr (APIC && S != ShapeType::Linear) ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { gather(index(i, j, k) * vdof, i, j, k, N, dN); });
       else ForEachLocalNode(st, index, vdof, [&](PetscInt at, PetscReal N, const PetscReal dN[]) { gather(at, 0, 0, 0, N, dN); });
       if constexpr (GRAD)
         for (int a = 0; a < DIM; ++a) grad[a][0] = grad01[a][0], grad[a][1] = grad01[a][1];
@@ -224,13 +223,13 @@ struct G2PKernel {
 // One application of S+ S to a grid field w (ghosted, layout of the velocity vector, first DIM entries
 // of each field): u_p = sum N w_I, then sum_p N m_p u_p summed into `sum` (ghosted, zeroed here).
 struct XPICKernel {
-  MpmSolver        &mpm;
+  MpmSolver         &mpm;
   const PetscScalar *w;
   PetscScalar       *sum;
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
   {
-    const Grid          &g = mpm.grid;
+    const Grid          &g    = mpm.grid;
     const PetscInt       vdof = g.num_velocity_fields * 2 * DIM;
     const LocalNodeIndex index(g);
     PetscInt             n;
@@ -250,7 +249,7 @@ struct XPICKernel {
     for (PetscInt p = 0; p < n; ++p) {
       const Stencil<DIM, S> &st = stencils[p];
       if (fill) stencils[p].Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
-      const PetscInt vf = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0;
+      const PetscInt vf     = g.num_velocity_fields > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0;
       PetscReal      u[DIM] = {};
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal *) {
         const PetscScalar *wv = w + index(i, j, k) * vdof + vf * 2 * DIM;
@@ -273,7 +272,7 @@ struct XPICKernel {
 // passes). Nodes under the mass cut-off stay zero; the rigid field keeps its prescribed velocity.
 static PetscErrorCode XPICExtrapolate(MpmSolver &mpm)
 {
-  Grid          &g = mpm.grid;
+  Grid          &g   = mpm.grid;
   const PetscInt dim = g.dim, nvf = g.num_velocity_fields, vdof = nvf * 2 * dim, stride = g.NodeStride(), dof = nvf * stride;
   const PetscInt m = mpm.xpic_order;
   PetscFunctionBeginUser;

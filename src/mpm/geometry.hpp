@@ -12,20 +12,20 @@ extern const char *const PressureSurfaceNames[];
 
 struct Geometry {
   std::string     name;
-  GeometryType    type = GeometryType::Box;
-  PetscInt        dim  = 2;
+  GeometryType    type     = GeometryType::Box;
+  PetscInt        dim      = 2;
   PetscReal       lower[3] = {0, 0, 0}, upper[3] = {0, 0, 0}; // box; z-extent of 3-D cylinders/annuli
   PetscReal       center[3] = {0, 0, 0};
-  PetscReal       radius = 0, inner_radius = 0;              // m
-  PetscReal       angle_range[2] = {0, 360};                 // degrees, sector of disks/annuli
-  PetscInt        material = 0;
-  PetscInt        particles_per_cell = 2;                    // per direction
-  PetscReal       velocity[3] = {0, 0, 0};                   // m/s
-  PetscReal       angular_velocity = 0;                      // rad/s, rigid spin about the centre (z axis)
-  PetscReal       radial_velocity = 0;                       // m/s, added along the radial direction
-  PetscReal       temperature = 300;                         // K
-  PressureSurface pressure_surface = PressureSurface::None;
-  PetscInt        load_curve = -1;
+  PetscReal       radius = 0, inner_radius = 0;  // m
+  PetscReal       angle_range[2]     = {0, 360}; // degrees, sector of disks/annuli
+  PetscInt        material           = 0;
+  PetscInt        particles_per_cell = 2;         // per direction
+  PetscReal       velocity[3]        = {0, 0, 0}; // m/s
+  PetscReal       angular_velocity   = 0;         // rad/s, rigid spin about the centre (z axis)
+  PetscReal       radial_velocity    = 0;         // m/s, added along the radial direction
+  PetscReal       temperature        = 300;       // K
+  PressureSurface pressure_surface   = PressureSurface::None;
+  PetscInt        load_curve         = -1;
 
   bool Contains(const PetscReal x[]) const;
   // Unit radial direction of x from the centre (in-plane for disks, cylinders, annuli).

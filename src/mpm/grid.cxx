@@ -69,9 +69,9 @@ static PetscErrorCode CreateNodeDMDA(MpmSolver &mpm, const std::vector<PetscInt>
   // No ghost nodes outside the domain: every support stays inside [0, M-1] (shape.hpp moves the
   // weight of a node beyond a wall onto the inside nodes), so on one rank the local vectors are the
   // global ones and P2G sums straight into them.
-  const DMBoundaryType bt = DM_BOUNDARY_NONE;
-  const PetscInt procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
-  const PetscInt *l[3] = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
+  const DMBoundaryType bt        = DM_BOUNDARY_NONE;
+  const PetscInt       procs0[3] = {ranges ? (PetscInt)g.procs[0] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[1] : PETSC_DECIDE, ranges ? (PetscInt)g.procs[2] : PETSC_DECIDE};
+  const PetscInt      *l[3]      = {ranges ? ranges[0].data() : nullptr, ranges ? ranges[1].data() : nullptr, ranges ? ranges[2].data() : nullptr};
   if (!ranges && !mpm.materials.empty()) { // (without solids the node vectors are not allocated: the gas has its own)
     const PetscReal nodes = (PetscReal)(g.cells[0] + 1) * (g.cells[1] + 1) * (g.dim == 3 ? g.cells[2] + 1 : 1);
     const PetscReal bytes = nodes / mpm.size * g.num_velocity_fields * (g.dim == 3 ? kMemoryNodeBytes3d : kMemoryNodeBytes2d);
@@ -89,7 +89,7 @@ static PetscErrorCode CreateNodeDMDA(MpmSolver &mpm, const std::vector<PetscInt>
   PetscCall(DMDACreateCompatibleDMDA(g.da_nodes, g.num_velocity_fields * 2 * g.dim, &g.da_velocity));
 
   // Ownership ranges for the owner-rank computation.
-  PetscInt        m, n, p;
+  PetscInt m, n, p;
   PetscCall(DMDAGetInfo(g.da_nodes, nullptr, nullptr, nullptr, nullptr, &m, &n, &p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr));
   PetscCall(DMDAGetOwnershipRanges(g.da_nodes, &l[0], &l[1], &l[2]));
   if (ranges) PetscCheck(m == g.procs[0] && n == g.procs[1] && (g.dim == 2 || p == g.procs[2]), mpm.comm, PETSC_ERR_PLIB, "The re-balanced grid changed the process grid");
@@ -147,10 +147,10 @@ PetscErrorCode GridVelocityGhosts(Grid &g)
 
 PetscErrorCode CreateGrid(MpmSolver &mpm)
 {
-  Grid     &g = mpm.grid;
+  Grid     &g         = mpm.grid;
   PetscBool set_cells = PETSC_FALSE, set_h = PETSC_FALSE;
   PetscReal cell_size[3] = {0, 0, 0};
-  PetscInt  cells[3] = {g.cells[0], g.cells[1], g.cells[2]};
+  PetscInt  cells[3]     = {g.cells[0], g.cells[1], g.cells[2]};
   int       bc[3][2];
   PetscFunctionBeginUser;
   PetscOptionsBegin(mpm.comm, "", "Background grid", "Grid");
@@ -167,7 +167,8 @@ PetscErrorCode CreateGrid(MpmSolver &mpm)
       PetscInt  nr         = 3;
       PetscCall(PetscOptionsGetRealArray(nullptr, nullptr, "-grid_cells", as_real, &nr, nullptr));
       for (PetscInt d = 0; d < PetscMin(n, nr); ++d)
-        PetscCheck(as_real[d] == (PetscReal)cells[d], mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: %g cells in direction %" PetscInt_FMT " is not a count this build can index (whole numbers from 1 to %g)", (double)as_real[d], d, (double)(PETSC_MAX_INT / 4));
+        PetscCheck(as_real[d] == (PetscReal)cells[d], mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: %g cells in direction %" PetscInt_FMT " is not a count this build can index (whole numbers from 1 to %g)", (double)as_real[d], d,
+                   (double)(PETSC_MAX_INT / 4));
     }
   }
   PetscCall(OptionsRealVector(PetscOptionsObject, "-grid_cell_size", "Cell size per direction (m), rounded to fit the box; overrides -grid_cells (which the scene files set)", cell_size, g.dim, &set_h));
@@ -182,8 +183,11 @@ PetscErrorCode CreateGrid(MpmSolver &mpm)
   PetscCall(PetscOptionsInt("-grid_balance_interval", "With -grid_balance: steps between re-balances (new ranges, particles migrated); 0: at start-up only", "", g.balance_interval, &g.balance_interval, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_rigid_weight", "With -grid_balance: work of a rigid particle relative to a deformable one (-), in [0, 1] (no stress update)", "", g.balance_rigid_weight, &g.balance_rigid_weight, nullptr));
   PetscCall(PetscOptionsReal("-grid_balance_node_weight", "With -grid_balance: work of a grid node relative to a particle (-), >= 0 (grid update, ghost exchange)", "", g.balance_node_weight, &g.balance_node_weight, nullptr));
-  PetscCall(PetscOptionsReal("-grid_balance_gas_weight", "With -grid_balance and gases (-ice_materials): work of a gas cell's step relative to a particle's (-), >= 0; the gas grid takes the balanced ranges", "", g.balance_gas_weight, &g.balance_gas_weight, nullptr));
-  PetscCall(PetscOptionsReal("-grid_balance_plastic_weight", "With -grid_balance: work of a particle that yielded in the last step relative to an elastic one (-), >= 1 (its return mapping); with -grid_balance_interval the ranges follow the plastic zone", "", g.balance_plastic_weight, &g.balance_plastic_weight, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_gas_weight", "With -grid_balance and gases (-ice_materials): work of a gas cell's step relative to a particle's (-), >= 0; the gas grid takes the balanced ranges", "", g.balance_gas_weight,
+                             &g.balance_gas_weight, nullptr));
+  PetscCall(PetscOptionsReal("-grid_balance_plastic_weight",
+                             "With -grid_balance: work of a particle that yielded in the last step relative to an elastic one (-), >= 1 (its return mapping); with -grid_balance_interval the ranges follow the plastic zone", "",
+                             g.balance_plastic_weight, &g.balance_plastic_weight, nullptr));
   PetscOptionsEnd();
   PetscCheck(g.balance_interval >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_balance_interval = %" PetscInt_FMT " is out of range: it must be >= 0", g.balance_interval);
   PetscCall(CheckRange(mpm.comm, "-grid_balance_rigid_weight", g.balance_rigid_weight, 0, 1, PETSC_FALSE));
@@ -198,15 +202,16 @@ PetscErrorCode CreateGrid(MpmSolver &mpm)
     if (set_h) {
       PetscCheck(cell_size[d] > 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g is out of range: it must be > 0", (double)cell_size[d]);
       const PetscReal count = std::round((g.upper[d] - g.lower[d]) / cell_size[d]);
-      PetscCheck(count <= (PetscReal)PETSC_MAX_INT / 4, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g gives %g cells in direction %" PetscInt_FMT "; at most %g fit a PetscInt index", (double)cell_size[d], (double)count, d, (double)(PETSC_MAX_INT / 4));
+      PetscCheck(count <= (PetscReal)PETSC_MAX_INT / 4, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cell_size = %g gives %g cells in direction %" PetscInt_FMT "; at most %g fit a PetscInt index", (double)cell_size[d], (double)count, d,
+                 (double)(PETSC_MAX_INT / 4));
       cells[d] = (PetscInt)PetscMax(1, (PetscInt)count);
     }
     PetscCheck(cells[d] >= 1, mpm.comm, PETSC_ERR_USER_INPUT, "Option -grid_cells: the cell count in direction %" PetscInt_FMT " is %" PetscInt_FMT "; it must be >= 1", d, cells[d]);
-    g.cells[d]        = cells[d];
-    g.h[d]            = (g.upper[d] - g.lower[d]) / cells[d];
-    g.axes[d].origin  = g.lower[d];
-    g.axes[d].h       = g.h[d];
-    g.axes[d].nodes   = cells[d] + 1;
+    g.cells[d]       = cells[d];
+    g.h[d]           = (g.upper[d] - g.lower[d]) / cells[d];
+    g.axes[d].origin = g.lower[d];
+    g.axes[d].h      = g.h[d];
+    g.axes[d].nodes  = cells[d] + 1;
   }
   if (g.dim == 2) {
     g.cells[2] = 1;
@@ -217,7 +222,8 @@ PetscErrorCode CreateGrid(MpmSolver &mpm)
 
   mpm.mass_cutoff = mpm.mass_cutoff_fraction * mpm.densest * g.CellVolume();
   PetscCall(CreateNodeDMDA(mpm, nullptr));
-  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2], (double)g.h[0], (double)g.h[1], (double)g.h[2], ShapeGhostWidth(mpm.shape), g.procs[0], g.procs[1], g.procs[2]));
+  PetscCall(PetscInfo(g.da_nodes, "Grid %" PetscInt_FMT "-D, %" PetscInt_FMT " x %" PetscInt_FMT " x %" PetscInt_FMT " cells, h = %g %g %g m, ghost width %" PetscInt_FMT ", %d x %d x %d ranks\n", g.dim, g.cells[0], g.cells[1], g.cells[2],
+                      (double)g.h[0], (double)g.h[1], (double)g.h[2], ShapeGhostWidth(mpm.shape), g.procs[0], g.procs[1], g.procs[2]));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -239,10 +245,11 @@ PetscErrorCode BalanceGrid(MpmSolver &mpm, PetscBool *changed)
   if (mpm.size == 1) PetscFunctionReturn(PETSC_SUCCESS);
   mpm.stencil_cache.Invalidate(); // new ghost ranges
   // the gas grid is created after this start-up balance and copies its ranges; conduction's before it
-  PetscCheck(!mpm.grid.ranges_copied && !mpm.heat, mpm.comm, PETSC_ERR_SUP, "Option -grid_balance is not available with -mpm_heat_conduction, nor with -grid_balance_interval > 0 and gases (-ice_materials): their grids keep the node ranges they were created with");
+  PetscCheck(!mpm.grid.ranges_copied && !mpm.heat, mpm.comm, PETSC_ERR_SUP,
+             "Option -grid_balance is not available with -mpm_heat_conduction, nor with -grid_balance_interval > 0 and gases (-ice_materials): their grids keep the node ranges they were created with");
   PetscCall(PetscLogEventBegin(mpm.ev_balance, 0, 0, 0, 0));
-  const PetscInt        dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};
-  const PetscInt        offset[3] = {0, nc[0], nc[0] + nc[1]};
+  const PetscInt         dim = g.dim, nc[3] = {g.cells[0], g.cells[1], dim == 3 ? g.cells[2] : 1};
+  const PetscInt         offset[3] = {0, nc[0], nc[0] + nc[1]};
   std::vector<PetscReal> work(nc[0] + nc[1] + nc[2], 0), total(work.size(), 0);
   {
     std::vector<PetscReal> weight(mpm.materials.size());
@@ -298,9 +305,9 @@ PetscErrorCode BalanceGrid(MpmSolver &mpm, PetscBool *changed)
       PetscInt        end    = begin + min_nodes;
       while (end < nodes && cumulative[end] < target) ++end;
       if (end > begin + min_nodes && target - cumulative[end - 1] < cumulative[end] - target) --end; // the nearer cut
-      end           = PetscMin(end, nodes - min_nodes * (P - 1 - r));                              // room for the others
-      ranges[d][r]  = end - begin;
-      begin         = end;
+      end          = PetscMin(end, nodes - min_nodes * (P - 1 - r));                                 // room for the others
+      ranges[d][r] = end - begin;
+      begin        = end;
     }
     ranges[d][P - 1] = nodes - begin;
     for (PetscInt r = 0; r < P; ++r) same = same && ranges[d][r] == g.start[d][r + 1] - g.start[d][r];
@@ -316,7 +323,8 @@ PetscErrorCode BalanceGrid(MpmSolver &mpm, PetscBool *changed)
     PetscCall(DMDestroy(&g.da_nodes));
     PetscCall(CreateNodeDMDA(mpm, ranges));
     *changed = PETSC_TRUE;
-    if (g.balanced_at < 0 || g.balance_interval == 0) PetscCall(PetscPrintf(mpm.comm, "  grid balanced from the particle work: node ranges x %s, y %s, z %s\n", RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
+    if (g.balanced_at < 0 || g.balance_interval == 0)
+      PetscCall(PetscPrintf(mpm.comm, "  grid balanced from the particle work: node ranges x %s, y %s, z %s\n", RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
     else PetscCall(PetscInfo(g.da_nodes, "Step %" PetscInt_FMT ": balanced node ranges x %s, y %s, z %s\n", mpm.step, RangesString(ranges[0]).c_str(), RangesString(ranges[1]).c_str(), RangesString(ranges[2]).c_str()));
   }
   PetscCall(PetscLogEventEnd(mpm.ev_balance, 0, 0, 0, 0));

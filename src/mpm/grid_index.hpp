@@ -39,7 +39,8 @@ inline void ForEachMarkedRun(const Grid &g, const unsigned char *marks, const Pe
         continue;
       }
       const unsigned char *m = marks + at, *a = also ? also + l : nullptr;
-      auto                 marked = [&](PetscInt i) { return m[i] || (a && a[i]); };
+
+      auto marked = [&](PetscInt i) { return m[i] || (a && a[i]); };
       for (PetscInt i = 0; i < xm[0];) {
         if (i + 8 <= xm[0]) {
           std::uint64_t m8, a8 = 0;
@@ -81,7 +82,7 @@ inline void SetParticleVelocity(PetscReal vp[], const PetscReal v_new[], const P
 template <int DIM, ShapeType S, class Fn>
 inline void ForEachLocalNode(const Stencil<DIM, S> &st, const LocalNodeIndex &index, PetscInt scale, Fn &&f)
 {
-  constexpr int NS = Stencil<DIM, S>::NS;
+  constexpr int NS            = Stencil<DIM, S>::NS;
   PetscInt      offset[3][NS] = {};
   for (int d = 0; d < DIM; ++d) {
     const PetscInt step = d == 0 ? scale : (d == 1 ? index.gxm[0] * scale : index.gxm[0] * index.gxm[1] * scale);

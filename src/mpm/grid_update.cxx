@@ -100,10 +100,10 @@ static inline void RigidContact(const MpmSolver &mpm, PetscInt dim, const PetscR
 
 static PetscErrorCode UpdateNodes(MpmSolver &mpm, bool integrate)
 {
-  Grid          &g   = mpm.grid;
-  const PetscInt dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
-  const PetscInt stride = g.NodeStride(), nvf = g.num_velocity_fields;
-  PetscInt       xs[3], xm[3];
+  Grid              &g   = mpm.grid;
+  const PetscInt     dim = g.dim, dof = g.num_velocity_fields * g.NodeStride(), vdof = g.num_velocity_fields * 2 * dim;
+  const PetscInt     stride = g.NodeStride(), nvf = g.num_velocity_fields;
+  PetscInt           xs[3], xm[3];
   const PetscScalar *nodal;
   PetscScalar       *vel;
   PetscFunctionBeginUser;
@@ -121,7 +121,7 @@ static PetscErrorCode UpdateNodes(MpmSolver &mpm, bool integrate)
   const LocalNodeIndex index(g);
   const PetscInt       owned = xm[0] * xm[1] * xm[2];
   if ((PetscInt)g.velocity_written.size() != owned) g.velocity_written.assign(owned, 1); // (a new layout: write every node once)
-  unsigned char *written = g.velocity_written.data();
+  unsigned char *written       = g.velocity_written.data();
   PetscReal      bc_impulse[3] = {0, 0, 0}; // what the face conditions take from the new nodal momenta (the budgets with gas)
   // node (i, j, k), owned index l: its velocities from its sums
   auto update = [&](PetscInt i, PetscInt j, PetscInt k, PetscInt l) {
@@ -140,8 +140,8 @@ static PetscErrorCode UpdateNodes(MpmSolver &mpm, bool integrate)
         return;
       }
     }
-    written[l] = 1;
-    const PetscInt node[3] = {i, j, k};
+    written[l]                 = 1;
+    const PetscInt node[3]     = {i, j, k};
     PetscReal      v_old[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, v_new[3][3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}, mass[3] = {0, 0, 0};
     for (PetscInt vf = 0; vf < nvf; ++vf) {
       const PetscScalar *nd = nodal + l * dof + vf * stride;
@@ -197,9 +197,12 @@ static PetscErrorCode UpdateNodes(MpmSolver &mpm, bool integrate)
   // With this step's marks, a node neither reached nor written is zero and stays so: only the others
   // are visited (most of a grid is empty: the cylinder's ring covers a few per cent of its nodes, the
   // Taylor rod about a tenth).
-  ForEachMarkedRun(g, reached, xs, xm, [&](PetscInt l, PetscInt, PetscInt count, PetscInt i, PetscInt j, PetscInt k) {
-    for (PetscInt n = 0; n < count; ++n) update(i + n, j, k, l + n);
-  }, written);
+  ForEachMarkedRun(
+    g, reached, xs, xm,
+    [&](PetscInt l, PetscInt, PetscInt count, PetscInt i, PetscInt j, PetscInt k) {
+      for (PetscInt n = 0; n < count; ++n) update(i + n, j, k, l + n);
+    },
+    written);
   for (PetscInt a = 0; a < dim; ++a) mpm.diag.bc_impulse[a] += bc_impulse[a];
   if (vel_local) PetscCall(VecRestoreArray(g.velocity_local, &vel_local));
   PetscCall(VecRestoreArray(g.velocity, &vel));

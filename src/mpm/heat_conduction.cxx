@@ -57,24 +57,24 @@ const char *const HeatInterfaceNames[] = {"arithmetic", "laminate"};
 enum class HeatInterface : int { Arithmetic = 0, Laminate = 1 };
 
 struct HeatConduction {
-  DM                     da = nullptr;              // node DMDA, dof 3: [C, T, Tdot]
+  DM                     da     = nullptr; // node DMDA, dof 3: [C, T, Tdot]
   Vec                    global = nullptr, local = nullptr, scratch = nullptr;
-  std::vector<PetscReal> k, c;                      // per material id; k < 0: does not conduct (rigid)
-  PetscReal              cfl = 0.5;                 // fraction of the explicit stability limit
-  PetscInt               max_substeps = 10000;      // refuse a step that would need more sub-steps
-  PetscBool              fixed[3][2] = {};          // fixed-temperature faces
-  PetscReal              face_T[3][2] = {};         // K
+  std::vector<PetscReal> k, c;                  // per material id; k < 0: does not conduct (rigid)
+  PetscReal              cfl           = 0.5;   // fraction of the explicit stability limit
+  PetscInt               max_substeps  = 10000; // refuse a step that would need more sub-steps
+  PetscBool              fixed[3][2]   = {};    // fixed-temperature faces
+  PetscReal              face_T[3][2]  = {};    // K
   PetscInt               last_substeps = 0;
-  HeatInterface          interface = HeatInterface::Laminate;
-  bool                   several_k = false;         // conducting materials of different conductivity
+  HeatInterface          interface     = HeatInterface::Laminate;
+  bool                   several_k     = false; // conducting materials of different conductivity
   // laminate: per ghosted local node, the sums of the cell it is the lower node of; per local
   // particle, [k along, k across - k along, n (3)] (k along < 0: a cell of one conductivity)
   std::vector<PetscReal> cell_sums, particle_k;
   PetscLogEvent          event = 0;
   // A surface heat source per particle, G_p (T_source - T_p) with G_p the swarm field
   // surface_conductance (W/K; src/phases.cxx measures it from the gas): added in every sub-step
-  PetscBool              surface_source = PETSC_FALSE;
-  PetscReal              source_temperature = 0; // K
+  PetscBool surface_source     = PETSC_FALSE;
+  PetscReal source_temperature = 0; // K
   ~HeatConduction()
   {
     (void)VecDestroy(&global);
@@ -86,8 +86,14 @@ struct HeatConduction {
   inline bool FaceTemperature(const Grid &g, PetscInt dim, const PetscInt ijk[3], PetscReal *T) const
   {
     for (PetscInt d = 0; d < dim; ++d) {
-      if (fixed[d][0] && ijk[d] == 0) { *T = face_T[d][0]; return true; }
-      if (fixed[d][1] && ijk[d] == g.axes[d].nodes - 1) { *T = face_T[d][1]; return true; }
+      if (fixed[d][0] && ijk[d] == 0) {
+        *T = face_T[d][0];
+        return true;
+      }
+      if (fixed[d][1] && ijk[d] == g.axes[d].nodes - 1) {
+        *T = face_T[d][1];
+        return true;
+      }
     }
     return false;
   }
@@ -95,8 +101,8 @@ struct HeatConduction {
 
 PetscErrorCode HeatConductionSetUp(MpmSolver &mpm)
 {
-  PetscBool on = PETSC_FALSE;
-  auto      heat = std::unique_ptr<HeatConduction, HeatDeleter>(new HeatConduction());
+  PetscBool   on             = PETSC_FALSE;
+  auto        heat           = std::unique_ptr<HeatConduction, HeatDeleter>(new HeatConduction());
   const char *face_opt[3][2] = {{"-mpm_heat_bc_xmin", "-mpm_heat_bc_xmax"}, {"-mpm_heat_bc_ymin", "-mpm_heat_bc_ymax"}, {"-mpm_heat_bc_zmin", "-mpm_heat_bc_zmax"}};
   PetscFunctionBeginUser;
   PetscOptionsBegin(mpm.comm, "", "Heat conduction in the solids", "Heat");
@@ -104,10 +110,14 @@ PetscErrorCode HeatConductionSetUp(MpmSolver &mpm)
   PetscCall(PetscOptionsReal("-mpm_heat_cfl", "Conduction sub-step as a fraction of the explicit limit 1/(2 alpha sum 1/h^2), in (0, 1]", "", heat->cfl, &heat->cfl, nullptr));
   {
     int choice = (int)heat->interface;
-    PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_heat_interface", "Conductivity of a cell that materials of different conductivity share: laminate, the layered-composite tensor (harmonic mean across the interface, arithmetic along it); arithmetic, the particles' volume-weighted mean in every direction", HeatInterfaceNames, 2, &choice, nullptr));
+    PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_heat_interface",
+                            "Conductivity of a cell that materials of different conductivity share: laminate, the layered-composite tensor (harmonic mean across the interface, arithmetic along it); arithmetic, the particles' volume-weighted mean in "
+                            "every direction",
+                            HeatInterfaceNames, 2, &choice, nullptr));
     heat->interface = (HeatInterface)choice;
   }
-  PetscCall(PetscOptionsInt("-mpm_heat_max_substeps", "Most conduction sub-steps in one time step, >= 1: a step that needs more (a high -<mat>_thermal_conductivity, a fine grid, a long -mpm_dt) stops the run with the count it would need", "", heat->max_substeps, &heat->max_substeps, nullptr));
+  PetscCall(PetscOptionsInt("-mpm_heat_max_substeps", "Most conduction sub-steps in one time step, >= 1: a step that needs more (a high -<mat>_thermal_conductivity, a fine grid, a long -mpm_dt) stops the run with the count it would need", "",
+                            heat->max_substeps, &heat->max_substeps, nullptr));
   for (PetscInt d = 0; d < mpm.grid.dim; ++d)
     for (int s = 0; s < 2; ++s) PetscCall(PetscOptionsReal(face_opt[d][s], "Fixed temperature (K) held on this domain face by the conduction step; unset: insulated (zero flux)", "", heat->face_T[d][s], &heat->face_T[d][s], &heat->fixed[d][s]));
   PetscOptionsEnd();
@@ -123,12 +133,12 @@ PetscErrorCode HeatConductionSetUp(MpmSolver &mpm)
   heat->k.assign(nmat, -1);
   heat->c.assign(nmat, -1);
   for (PetscInt m = 0; m < nmat; ++m) {
-    Material   &mat = *mpm.materials[m];
-    PetscReal   v[3];
-    const bool  rigid = mat.IsRigid(v);
-    const std::string pre = mat.name_ + "_";
-    PetscBool   has_k = PETSC_FALSE, has_c = PETSC_FALSE;
-    PetscReal   k = -1, c = -1;
+    Material         &mat = *mpm.materials[m];
+    PetscReal         v[3];
+    const bool        rigid = mat.IsRigid(v);
+    const std::string pre   = mat.name_ + "_";
+    PetscBool         has_k = PETSC_FALSE, has_c = PETSC_FALSE;
+    PetscReal         k = -1, c = -1;
     PetscOptionsBegin(mpm.comm, pre.c_str(), "Heat conduction: material parameters", "Heat");
     PetscCall(PetscOptionsReal("-thermal_conductivity", "Thermal conductivity k (W/(m K)), >= 0; read with -mpm_heat_conduction", "", k, &k, &has_k));
     PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat c_p (J/(kg K)), > 0, constant, of the conduction step only (a model's own specific heat model, if any, is separate)", "", c, &c, &has_c));
@@ -159,7 +169,7 @@ namespace {
 // One pass over the conducting particles; what = 0: P2G of [C, C T]; 1: grad T and Qdot into
 // `out`; 2: T_p += dt sum N Tdot.
 struct HeatKernel {
-  MpmSolver           &mpm;
+  MpmSolver            &mpm;
   const HeatConduction &heat;
   int                   what;
   const PetscScalar    *in;  // ghosted [C, T, Tdot] (passes 1, 2)
@@ -187,7 +197,7 @@ struct HeatKernel {
     const PetscReal *G = nullptr;
     if (what == 2 && heat.surface_source) PetscCall(fields.Get(field::surface_conductance, &G));
     const PetscReal *laminate = what == 1 && !heat.particle_k.empty() ? heat.particle_k.data() : nullptr;
-    Stencil<DIM, S> st;
+    Stencil<DIM, S>  st;
     for (PetscInt p = 0; p < n; ++p) {
       const PetscReal kp = heat.k[mat[p]], cp = heat.c[mat[p]];
       if (kp < 0) continue; // rigid: not part of the thermal problem
@@ -248,7 +258,7 @@ struct HeatKernel {
 // from the sums over the particles of its cell (the header's formula).
 PetscErrorCode LaminateConductivities(MpmSolver &mpm, HeatConduction &heat)
 {
-  const Grid          &g = mpm.grid;
+  const Grid          &g   = mpm.grid;
   const PetscInt       dim = g.dim;
   const LocalNodeIndex index(g);
   // per cell: V, V k, V/k, V psi, V x (3), V psi x (3), the first k seen, whether another differs
@@ -278,7 +288,7 @@ PetscErrorCode LaminateConductivities(MpmSolver &mpm, HeatConduction &heat)
     const PetscReal k = heat.k[mat[p]];
     const PetscInt  c = k >= 0 ? cell_of(p) : -1;
     if (c < 0) continue;
-    PetscReal      *s   = heat.cell_sums.data() + (size_t)c * NSUM;
+    PetscReal      *s = heat.cell_sums.data() + (size_t)c * NSUM;
     const PetscReal V = vol[p], psi = std::log(k + 1e-300);
     if (s[0] == 0) s[11] = k;
     else if (k != s[11]) s[12] = 1;
@@ -292,10 +302,10 @@ PetscErrorCode LaminateConductivities(MpmSolver &mpm, HeatConduction &heat)
     }
   }
   for (PetscInt p = 0; p < n; ++p) {
-    PetscReal      *lam = heat.particle_k.data() + 5 * p;
-    const PetscInt  c   = heat.k[mat[p]] >= 0 ? cell_of(p) : -1;
-    const PetscReal *s  = c >= 0 ? heat.cell_sums.data() + (size_t)c * NSUM : nullptr;
-    lam[0] = -1; // one conductivity in the cell: the particle's own
+    PetscReal       *lam = heat.particle_k.data() + 5 * p;
+    const PetscInt   c   = heat.k[mat[p]] >= 0 ? cell_of(p) : -1;
+    const PetscReal *s   = c >= 0 ? heat.cell_sums.data() + (size_t)c * NSUM : nullptr;
+    lam[0]               = -1; // one conductivity in the cell: the particle's own
     if (!s || s[12] == 0) continue;
     const PetscReal along = s[1] / s[0], across = s[0] / s[2]; // arithmetic, harmonic
     PetscReal       normal[3] = {0, 0, 0}, norm = 0;
@@ -319,7 +329,7 @@ PetscErrorCode MaxDiffusivity(MpmSolver &mpm, const HeatConduction &heat, PetscR
   PetscInt         n;
   const PetscReal *m, *vol;
   const PetscInt  *mat;
-  PetscReal        local = 0;
+  PetscReal        local     = 0;
   PetscInt         local_mat = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
@@ -365,9 +375,9 @@ PetscErrorCode ForOwnedNodes(const HeatConduction &heat, PetscScalar *array, Fn 
 
 PetscErrorCode HeatSubStep(MpmSolver &mpm, HeatConduction &heat, PetscReal dt)
 {
-  const Grid  &g = mpm.grid;
-  const PetscInt dim = g.dim;
-  PetscScalar *arr;
+  const Grid        &g   = mpm.grid;
+  const PetscInt     dim = g.dim;
+  PetscScalar       *arr;
   const PetscScalar *in;
   PetscFunctionBeginUser;
   // 1. C_I and T_I
@@ -441,7 +451,10 @@ PetscErrorCode CheckTemperatures(MpmSolver &mpm, const HeatConduction &heat, Pet
   PetscCallMPI(MPI_Allreduce(&bad_id, &global_id, 1, MPIU_INT64, MPI_MAX, mpm.comm));
   if (global_id < 0) PetscFunctionReturn(PETSC_SUCCESS);
   const std::string name = mpm.materials[which >= 0 ? which : 0]->name_;
-  SETERRQ(mpm.comm, PETSC_ERR_USER_INPUT, "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)", mpm.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
+  SETERRQ(mpm.comm, PETSC_ERR_USER_INPUT,
+          "Heat conduction, step %" PetscInt_FMT ": the temperature of particle id %" PetscInt64_FMT " is not finite after %" PetscInt_FMT
+          " conduction sub-step(s); check -%s_thermal_conductivity and -%s_heat_capacity (bounded physical values) and the initial temperatures (-<geometry>_temperature)",
+          mpm.step + 1, global_id, heat.last_substeps, name.c_str(), name.c_str());
 }
 } // namespace
 
@@ -464,15 +477,18 @@ PetscErrorCode ConductHeat(MpmSolver &mpm)
     const PetscReal needed = std::ceil(mpm.dt / limit * (1 - 1e-12)); // inf or NaN for an unbounded input
     if (!(needed <= (PetscReal)heat.max_substeps)) {
       const Material &m = *mpm.materials[which >= 0 ? which : 0];
-      auto            g = [](PetscReal v) { // C's %g (PETSc's adds a trailing point to whole numbers)
+
+      auto g = [](PetscReal v) { // C's %g (PETSc's adds a trailing point to whole numbers)
         char buf[32];
         std::snprintf(buf, sizeof(buf), "%g", (double)v);
         return std::string(buf);
       };
       SETERRQ(mpm.comm, PETSC_ERR_USER_INPUT,
-              "Heat conduction, step %" PetscInt_FMT ": the time step %s s would need %s conduction sub-steps (explicit limit %s s at -mpm_heat_cfl %s), more than -mpm_heat_max_substeps %" PetscInt_FMT "; it is driven by material %s: -%s_thermal_conductivity %s W/(m K) with -%s_heat_capacity %s J/(kg K) (diffusivity %s m^2/s). "
+              "Heat conduction, step %" PetscInt_FMT ": the time step %s s would need %s conduction sub-steps (explicit limit %s s at -mpm_heat_cfl %s), more than -mpm_heat_max_substeps %" PetscInt_FMT
+              "; it is driven by material %s: -%s_thermal_conductivity %s W/(m K) with -%s_heat_capacity %s J/(kg K) (diffusivity %s m^2/s). "
               "Lower the conductivity, use a smaller time step (-mpm_dt, -mpm_dt_max) or coarser grid, or raise -mpm_heat_max_substeps",
-              mpm.step + 1, g(mpm.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(), g(alpha).c_str());
+              mpm.step + 1, g(mpm.dt).c_str(), g(needed).c_str(), g(limit).c_str(), g(heat.cfl).c_str(), heat.max_substeps, m.Name(), m.Name(), g(heat.k[which >= 0 ? which : 0]).c_str(), m.Name(), g(heat.c[which >= 0 ? which : 0]).c_str(),
+              g(alpha).c_str());
     }
     const PetscInt nsub = PetscMax(1, (PetscInt)needed);
     heat.last_substeps  = nsub;

@@ -26,7 +26,7 @@ PetscErrorCode CreateMaterials(MpmSolver &mpm)
     densest = PetscMax(densest, m->Density());
   }
   for (PetscInt i = 0; i < n; ++i) PetscCall(PetscFree(names[i])); // after the duplicate check used them
-  mpm.densest = densest; // the grid turns it into the nodal mass cut-off
+  mpm.densest = densest;                                           // the grid turns it into the nodal mass cut-off
   for (PetscInt i = 0; i < (PetscInt)mpm.materials.size(); ++i)
     if (mpm.materials[i]->IsRigid(mpm.rigid_velocity)) {
       PetscCheck(mpm.rigid_material < 0, mpm.comm, PETSC_ERR_USER_INPUT, "Only one rigid material is supported; -materials lists %s and %s", mpm.materials[mpm.rigid_material]->Name(), mpm.materials[i]->Name());

@@ -37,37 +37,38 @@ extern const char *const TransferNames[];
 
 // Names of the swarm fields registered by the core.
 namespace field {
-inline constexpr const char *velocity        = "velocity";          // m/s, bs dim
-inline constexpr const char *mass            = "mass";              // kg
-inline constexpr const char *volume          = "volume";            // m^3 (2-D: per metre of thickness)
-inline constexpr const char *volume0         = "volume0";           // m^3, at seeding
-inline constexpr const char *position0       = "position0";         // m, bs dim (reference position X)
-inline constexpr const char *half_width0     = "half_width0";       // m, bs dim (GIMP particle half-widths)
-inline constexpr const char *F               = "F";                 // deformation gradient, bs 9
-inline constexpr const char *stress          = "stress";            // Cauchy stress, Pa, bs 9
-inline constexpr const char *L               = "velocity_gradient"; // 1/s, bs 9
-inline constexpr const char *temperature     = "temperature";       // K
-inline constexpr const char *wave_speed      = "wave_speed";        // m/s
-inline constexpr const char *internal_energy = "internal_energy";   // J (stress work)
-inline constexpr const char *external_force  = "external_force";    // N, bs dim (body + traction)
-inline constexpr const char *traction_area0  = "traction_area0";    // m^2, bs dim: outward normal x area at seeding
-inline constexpr const char *load_curve      = "load_curve";        // int: index of the pressure load curve, -1 none
-inline constexpr const char *material        = "material";          // int: material id
-inline constexpr const char *bulk_viscosity  = "bulk_viscosity";    // Pa, artificial bulk viscosity pressure q
-inline constexpr const char *fragment        = "fragment";          // int: fragment id of intact particles, -1 otherwise
-inline constexpr const char *ambient_pressure = "ambient_pressure"; // Pa: pressure of a surrounding gas less its reference (only with gas)
-inline constexpr const char *surface_heat        = "surface_heat";        // J: heat from the gas over the phases' window (only with -phases)
+inline constexpr const char *velocity                 = "velocity";                 // m/s, bs dim
+inline constexpr const char *mass                     = "mass";                     // kg
+inline constexpr const char *volume                   = "volume";                   // m^3 (2-D: per metre of thickness)
+inline constexpr const char *volume0                  = "volume0";                  // m^3, at seeding
+inline constexpr const char *position0                = "position0";                // m, bs dim (reference position X)
+inline constexpr const char *half_width0              = "half_width0";              // m, bs dim (GIMP particle half-widths)
+inline constexpr const char *F                        = "F";                        // deformation gradient, bs 9
+inline constexpr const char *stress                   = "stress";                   // Cauchy stress, Pa, bs 9
+inline constexpr const char *L                        = "velocity_gradient";        // 1/s, bs 9
+inline constexpr const char *temperature              = "temperature";              // K
+inline constexpr const char *wave_speed               = "wave_speed";               // m/s
+inline constexpr const char *internal_energy          = "internal_energy";          // J (stress work)
+inline constexpr const char *external_force           = "external_force";           // N, bs dim (body + traction)
+inline constexpr const char *traction_area0           = "traction_area0";           // m^2, bs dim: outward normal x area at seeding
+inline constexpr const char *load_curve               = "load_curve";               // int: index of the pressure load curve, -1 none
+inline constexpr const char *material                 = "material";                 // int: material id
+inline constexpr const char *bulk_viscosity           = "bulk_viscosity";           // Pa, artificial bulk viscosity pressure q
+inline constexpr const char *fragment                 = "fragment";                 // int: fragment id of intact particles, -1 otherwise
+inline constexpr const char *ambient_pressure         = "ambient_pressure";         // Pa: pressure of a surrounding gas less its reference (only with gas)
+inline constexpr const char *surface_heat             = "surface_heat";             // J: heat from the gas over the phases' window (only with -phases)
 inline constexpr const char *surface_temperature_time = "surface_temperature_time"; // K s: integral of T over that window (only with -phases)
-inline constexpr const char *surface_conductance = "surface_conductance"; // W/K: G_p of the surface heat G_p (T_f - T_p) (only with -phases)
-inline constexpr const char *reacted_fraction = "reacted_fraction";       // -: a charge particle's thermally decomposed fraction (only with -phases)
-inline constexpr const char *affine          = "affine";            // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
+inline constexpr const char *surface_conductance      = "surface_conductance";      // W/K: G_p of the surface heat G_p (T_f - T_p) (only with -phases)
+inline constexpr const char *reacted_fraction         = "reacted_fraction";         // -: a charge particle's thermally decomposed fraction (only with -phases)
+inline constexpr const char *affine                   = "affine";                   // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
 struct LoadCurve {
   std::string            name;
   std::vector<PetscReal> time, value;
-  PetscReal              Evaluate(PetscReal t) const;
+
+  PetscReal Evaluate(PetscReal t) const;
 };
 
 // A geometry object from which particles are seeded (src/mpm/seed.cxx).
@@ -80,115 +81,116 @@ struct HeatDeleter {
 };
 
 struct Grid {
-  PetscInt  dim = 2;
+  PetscInt  dim      = 2;
   PetscReal lower[3] = {0, 0, 0}, upper[3] = {1, 1, 1};
   PetscInt  cells[3] = {10, 10, 10};
   PetscReal h[3]     = {0.1, 0.1, 0.1};
   Axis      axes[3];
-  FaceBC    bc[3][2] = {{FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}};
-  DM        da_nodes = nullptr;  // node DMDA, dof = nodal layout below
+  FaceBC    bc[3][2]    = {{FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}, {FaceBC::Free, FaceBC::Free}};
+  DM        da_nodes    = nullptr; // node DMDA, dof = nodal layout below
   DM        da_velocity = nullptr; // node DMDA for the velocity fields [v_old, v_new] per velocity field
   // Nodal layout per velocity field: [mass, momentum(dim), force(dim)], plus the mass gradient(dim)
   // for the contact normals when there are several fields (failed particles converted to their own
   // field). Fields are stacked: dof = num_velocity_fields * NodeStride().
-  PetscInt  num_velocity_fields = 1;
-  PetscInt  NodeStride() const { return 1 + 2 * dim + (num_velocity_fields > 1 ? dim : 0); }
+  PetscInt num_velocity_fields = 1;
+  PetscInt NodeStride() const { return 1 + 2 * dim + (num_velocity_fields > 1 ? dim : 0); }
   // Ownership of node indices per direction, for owner-rank computation (petsc.md 3).
-  PetscMPIInt              procs[3] = {1, 1, 1};
-  std::vector<PetscInt>    start[3]; // start[d][r] = first node owned by slot r, with start[d][procs] = M
+  PetscMPIInt           procs[3] = {1, 1, 1};
+  std::vector<PetscInt> start[3]; // start[d][r] = first node owned by slot r, with start[d][procs] = M
   // Local ghosted box of the node DMDA.
-  PetscInt gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
-  Vec      nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
-  VecScatter ghost_sums = nullptr; // the ghost nodes of nodal_local onto their owners' entries of nodal (null without ghost nodes; p2g.cxx)
-  Vec      velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
-  VecScatter velocity_ghosts = nullptr; // the owners' velocities onto the ghost nodes of velocity_local (reverse; null without ghost nodes)
+  PetscInt   gxs[3] = {0, 0, 0}, gxm[3] = {1, 1, 1};
+  Vec        nodal = nullptr, nodal_local = nullptr;       // global / local nodal sums
+  VecScatter ghost_sums = nullptr;                         // the ghost nodes of nodal_local onto their owners' entries of nodal (null without ghost nodes; p2g.cxx)
+  Vec        velocity = nullptr, velocity_local = nullptr; // global / local [v_old, v_new]
+  VecScatter velocity_ghosts = nullptr;                    // the owners' velocities onto the ghost nodes of velocity_local (reverse; null without ghost nodes)
   // Owned nodes whose velocities the last grid update (or the coupling) wrote non-zero, per owned node
   // (grid_update.cxx): an empty node that was empty before is zero in both vectors already. Empty
   // after a new layout: the first update writes every node.
   std::vector<unsigned char> velocity_written;
   // Load balance (grid.cxx): ownership ranges from the particle work, at start-up and every
   // balance_interval steps (0: start-up only).
-  PetscBool balance = PETSC_FALSE;
-  PetscInt  balance_interval = 0;
+  PetscBool balance              = PETSC_FALSE;
+  PetscInt  balance_interval     = 0;
   PetscReal balance_rigid_weight = 0.5, balance_node_weight = 0.002, balance_plastic_weight = 2.0;
-  PetscReal balance_gas_weight = 1.0; // work of a gas cell relative to a particle
-  bool      balance_with_gas   = false; // the scene has gases: the start-up balance counts their cells
-  PetscInt  balanced_at = -1; // step of the last balance, -1: none yet
-  bool      ranges_copied = false; // another grid (the gas's) copied the node ranges at its set-up: they cannot change
-  Vec      xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
+  PetscReal balance_gas_weight = 1.0;                                                         // work of a gas cell relative to a particle
+  bool      balance_with_gas   = false;                                                       // the scene has gases: the start-up balance counts their cells
+  PetscInt  balanced_at        = -1;                                                          // step of the last balance, -1: none yet
+  bool      ranges_copied      = false;                                                       // another grid (the gas's) copied the node ranges at its set-up: they cannot change
+  Vec       xpic_star = nullptr, xpic_w = nullptr, xpic_sum = nullptr, xpic_global = nullptr; // XPIC work vectors (only with -mpm_transfer xpic)
   // Nodes that can hold mass in step `reached_step`, per ghosted local node (p2g.cxx: the P2G of the
   // masses marks them): the grid updates skip the others without reading their sums.
   std::vector<unsigned char> reached;
   PetscInt                   reached_step = -1;
+
   PetscReal CellVolume() const { return dim == 2 ? h[0] * h[1] : h[0] * h[1] * h[2]; }
 };
 
 class CheckpointValues; // src/io/checkpoint_values.hpp
 
 struct Diagnostics {
-  PetscReal external_work       = 0; // J, work of body forces and tractions (this rank)
-  PetscReal removed_energy      = 0; // J, kinetic + internal energy of removed particles (this rank)
-  PetscReal viscous_work        = 0; // J, work of the artificial bulk viscosity (this rank)
-  PetscReal removed_mass        = 0; // kg (this rank)
-  PetscReal removed_momentum[3] = {0, 0, 0}; // kg m/s of the removed particles and of what burning took from particles (this rank)
-  PetscReal bc_impulse[3]       = {0, 0, 0}; // N s the fixed and symmetry faces gave the particles through the nodes (this rank; grid update, gas coupling)
-  PetscInt  removed_particles   = 0; // this rank
-  PetscReal initial_energy      = 0; // J, global
-  PetscReal initial_kinetic     = 0; // J, global, at the start of the run
+  PetscReal external_work       = 0;           // J, work of body forces and tractions (this rank)
+  PetscReal removed_energy      = 0;           // J, kinetic + internal energy of removed particles (this rank)
+  PetscReal viscous_work        = 0;           // J, work of the artificial bulk viscosity (this rank)
+  PetscReal removed_mass        = 0;           // kg (this rank)
+  PetscReal removed_momentum[3] = {0, 0, 0};   // kg m/s of the removed particles and of what burning took from particles (this rank)
+  PetscReal bc_impulse[3]       = {0, 0, 0};   // N s the fixed and symmetry faces gave the particles through the nodes (this rank; grid update, gas coupling)
+  PetscInt  removed_particles   = 0;           // this rank
+  PetscReal initial_energy      = 0;           // J, global
+  PetscReal initial_kinetic     = 0;           // J, global, at the start of the run
   PetscBool kinetic_stop        = PETSC_FALSE; // the run ended on -stop_kinetic_fraction
   // The budgets of a run with gas (monitor.cxx): the conserved sums at the start (mass, momentum (3),
   // energy) and the largest term seen (mass, momentum, energy), global.
-  PetscReal budget_initial[5] = {0, 0, 0, 0, 0};
-  PetscReal budget_scale[3]   = {0, 0, 0};
-  PetscReal max_error_displacement = 0; // analytic solutions: max over monitor steps of the L2 error
+  PetscReal budget_initial[5]       = {0, 0, 0, 0, 0};
+  PetscReal budget_scale[3]         = {0, 0, 0};
+  PetscReal max_error_displacement  = 0; // analytic solutions: max over monitor steps of the L2 error
   PetscReal last_error_displacement = 0;
-  void      Checkpoint(CheckpointValues &values); // its part of a checkpoint (src/io/monitor.cxx)
-};
 
+  void Checkpoint(CheckpointValues &values); // its part of a checkpoint (src/io/monitor.cxx)
+};
 
 struct MpmSolver {
   MPI_Comm    comm = PETSC_COMM_WORLD;
   PetscMPIInt rank = 0, size = 1;
   PetscBool   help = PETSC_FALSE; // -help: read and list every option, create nothing
   // The clock, set by the driver at every step (src/step.cxx), as the gas's.
-  PetscInt    step = 0;
-  PetscReal   time = 0, dt = 0; // s
+  PetscInt  step = 0;
+  PetscReal time = 0, dt = 0; // s
 
   // Method options (-mpm_*; read in src/options.cxx)
-  PetscReal   cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
-  StepScheme  scheme = StepScheme::USL;
-  PetscReal   flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
-  Transfer    transfer = Transfer::FlipPic;
-  PetscInt    xpic_order = 2;      // m of XPIC(m); m = 1 is PIC
-  PetscBool   axisymmetric = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
-  FUpdate     f_update = FUpdate::Linear;
-  ShapeType   shape = ShapeType::Linear;
-  StencilCache stencil_cache;      // this step's particle stencils, shared by the transfers (shape.hpp)
-  OutsidePolicy outside = OutsidePolicy::Error;
-  PetscReal   gravity[3] = {0, 0, 0};
-  PetscReal   mass_cutoff_fraction = 1e-9; // nodes lighter than this fraction of a full cell's mass are void
-  PetscReal   mass_cutoff = 0;             // kg, from the fraction and the densest material
-  PetscReal   densest = 0;                 // kg/m^3, largest material density
-  PetscReal   viscosity[2] = {0, 0};       // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
-  PetscBool   convert_failed = PETSC_FALSE; // failed particles move in a velocity field of their own
-  std::string contact_material_name;           // -mpm_contact_material: this material moves in a field of its own
-  PetscInt    contact_material = -1;           // its material id, -1 if none
-  PetscBool   ambient_pressure = PETSC_FALSE; // particles carry a surrounding gas's pressure (the coupling sets it)
-  PetscBool   surface_heat_fields = PETSC_FALSE; // particles carry the surface heat of a run in phases (-phases)
-  ContactType contact = ContactType::Friction;
-  PetscReal   friction = 0;                // Coulomb coefficient of the contact between fields
-  PetscInt    rigid_material = -1;         // material id of the rigid body, -1 if none
-  PetscReal   rigid_velocity[3] = {0, 0, 0};
-  PetscInt    sort_interval = 0;           // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
+  PetscReal     cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
+  StepScheme    scheme        = StepScheme::USL;
+  PetscReal     flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
+  Transfer      transfer      = Transfer::FlipPic;
+  PetscInt      xpic_order    = 2;           // m of XPIC(m); m = 1 is PIC
+  PetscBool     axisymmetric  = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
+  FUpdate       f_update      = FUpdate::Linear;
+  ShapeType     shape         = ShapeType::Linear;
+  StencilCache  stencil_cache; // this step's particle stencils, shared by the transfers (shape.hpp)
+  OutsidePolicy outside              = OutsidePolicy::Error;
+  PetscReal     gravity[3]           = {0, 0, 0};
+  PetscReal     mass_cutoff_fraction = 1e-9;        // nodes lighter than this fraction of a full cell's mass are void
+  PetscReal     mass_cutoff          = 0;           // kg, from the fraction and the densest material
+  PetscReal     densest              = 0;           // kg/m^3, largest material density
+  PetscReal     viscosity[2]         = {0, 0};      // artificial bulk viscosity coefficients A1 (linear), A2 (quadratic)
+  PetscBool     convert_failed       = PETSC_FALSE; // failed particles move in a velocity field of their own
+  std::string   contact_material_name;              // -mpm_contact_material: this material moves in a field of its own
+  PetscInt      contact_material    = -1;           // its material id, -1 if none
+  PetscBool     ambient_pressure    = PETSC_FALSE;  // particles carry a surrounding gas's pressure (the coupling sets it)
+  PetscBool     surface_heat_fields = PETSC_FALSE;  // particles carry the surface heat of a run in phases (-phases)
+  ContactType   contact             = ContactType::Friction;
+  PetscReal     friction            = 0;  // Coulomb coefficient of the contact between fields
+  PetscInt      rigid_material      = -1; // material id of the rigid body, -1 if none
+  PetscReal     rigid_velocity[3]   = {0, 0, 0};
+  PetscInt      sort_interval       = 0; // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
   // Velocity fields: 0 intact deformable, 1 converted (failed) particles if -mpm_convert_failed or
   // the material of -mpm_contact_material, last the rigid body if any.
-  PetscInt    VelocityField(PetscInt material, PetscInt failed) const
+  PetscInt VelocityField(PetscInt material, PetscInt failed) const
   {
     if (material == rigid_material) return grid.num_velocity_fields - 1;
     if (material == contact_material) return 1;
     return (convert_failed && failed) ? 1 : 0;
   }
-  bool        TwoDeformableFields() const { return convert_failed || contact_material >= 0; }
+  bool TwoDeformableFields() const { return convert_failed || contact_material >= 0; }
 
   // Objects
   Grid                                         grid;
@@ -203,13 +205,13 @@ struct MpmSolver {
   // The driver's picture of the particles as they are, written when a check finds an invalid state
   // (src/mpm/stress_loop.cxx), under the given step's name.
   std::function<PetscErrorCode(PetscInt step)> write_snapshot;
-  bool HasParticles() const { return swarm != nullptr; }
+  bool                                         HasParticles() const { return swarm != nullptr; }
 
   // Counters
-  PetscInt64 total_particles = 0; // global count, checked after every migration
-  PetscInt64 next_pid = 0;        // next unused particle id (global)
-  PetscInt64 particle_steps = 0;  // global sum over steps of the particle count
-  PetscInt   swarm_bytes = 0;     // bytes of swarm storage per particle (all registered fields)
+  PetscInt64  total_particles = 0; // global count, checked after every migration
+  PetscInt64  next_pid        = 0; // next unused particle id (global)
+  PetscInt64  particle_steps  = 0; // global sum over steps of the particle count
+  PetscInt    swarm_bytes     = 0; // bytes of swarm storage per particle (all registered fields)
   Diagnostics diag;
 
   // Events for -log_view
@@ -243,7 +245,9 @@ PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm);
 PetscErrorCode ComputeExternalForces(MpmSolver &mpm);
 bool           HasExternalForces(const MpmSolver &mpm); // gravity, a body force or a load curve: external_force may be nonzero
 
-struct P2GRequest { PetscBool mass, momentum, force; };
+struct P2GRequest {
+  PetscBool mass, momentum, force;
+};
 PetscErrorCode ParticlesToGrid(MpmSolver &mpm, P2GRequest what);
 // MUSL's remap: the particle velocities from the grid and their momentum back onto it, in one pass.
 PetscErrorCode RemapMomentum(MpmSolver &mpm);
@@ -251,7 +255,9 @@ PetscErrorCode GridUpdate(MpmSolver &mpm);
 PetscErrorCode GridVelocityFromMomentum(MpmSolver &mpm);
 
 // kinematics: L = grad v_new, then F <- (I + L dt) F (or exp(L dt) F) and V = V0 det F, fused in one pass.
-struct G2PRequest { PetscBool velocity, position, kinematics; };
+struct G2PRequest {
+  PetscBool velocity, position, kinematics;
+};
 PetscErrorCode GridToParticles(MpmSolver &mpm, G2PRequest what);
 PetscErrorCode UpdateStress(MpmSolver &mpm);
 // Stops the run, naming the step, particle and field, on a non-finite state or a non-positive
@@ -264,11 +270,11 @@ PetscErrorCode BalanceGrid(MpmSolver &mpm, PetscBool *changed);
 // *removed is the global count.
 PetscErrorCode RemoveParticles(MpmSolver &mpm, const std::vector<char> &remove, PetscInt64 *removed);
 PetscErrorCode ComputeOwnerRanks(MpmSolver &mpm, PetscInt *num_outside, bool need_cells = true, PetscInt *num_leaving = nullptr);
-PetscErrorCode ConductHeat(MpmSolver &mpm);         // no-op unless -mpm_heat_conduction
+PetscErrorCode ConductHeat(MpmSolver &mpm); // no-op unless -mpm_heat_conduction
 // Adds G_p (T_source - T_p) to each conducting particle in every conduction sub-step (G_p: the swarm
 // field surface_conductance, W/K), or stops doing so.
 PetscErrorCode HeatSetSurfaceSource(MpmSolver &mpm, PetscBool on, PetscReal source_temperature);
-PetscErrorCode NonlocalAverage(MpmSolver &mpm);     // src/mpm/nonlocal.cxx: no-op unless a material has -MAT_regularization nonlocal
+PetscErrorCode NonlocalAverage(MpmSolver &mpm); // src/mpm/nonlocal.cxx: no-op unless a material has -MAT_regularization nonlocal
 
 // Fragments (src/mpm/fragments.cxx)
 PetscErrorCode FragmentsSetUp(MpmSolver &mpm);

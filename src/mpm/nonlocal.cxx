@@ -35,13 +35,13 @@ namespace {
 constexpr PetscInt kDof = 1 + kNonlocalComponents; // [weight, weighted values]
 
 struct NonlocalGrid {
-  DM                    da = nullptr;
-  Vec                   global = nullptr, local = nullptr;
-  std::vector<PetscReal> scratch[2];     // pass buffers over the local ghosted box
-  std::vector<PetscInt> ranges[3];       // ownership of the node DMDA it was built with
-  PetscInt              width = 0;
-  PetscLogEvent         event = 0;
-  bool                  first_call = true;
+  DM                     da     = nullptr;
+  Vec                    global = nullptr, local = nullptr;
+  std::vector<PetscReal> scratch[2]; // pass buffers over the local ghosted box
+  std::vector<PetscInt>  ranges[3];  // ownership of the node DMDA it was built with
+  PetscInt               width      = 0;
+  PetscLogEvent          event      = 0;
+  bool                   first_call = true;
 };
 
 PetscErrorCode NonlocalGridDestroy(void *ctx)
@@ -90,7 +90,9 @@ PetscErrorCode NonlocalGridSetUp(MpmSolver &mpm, NonlocalGrid &g, PetscInt width
   for (PetscInt d = 0; d < grid.dim; ++d) {
     g.ranges[d].assign(l[d], l[d] + m[d]);
     for (PetscInt r = 0; r < m[d] && m[d] > 1; ++r) // one rank along d: every node is local (DMDA allows that)
-      PetscCheck(l[d][r] >= width, mpm.comm, PETSC_ERR_USER_INPUT, "-%s_regularization_length %g m spans %" PetscInt_FMT " cells, more than the %" PetscInt_FMT " nodes a rank owns along direction %" PetscInt_FMT ": use fewer ranks, a finer grid or a shorter length", material, (double)ell, width, l[d][r], d);
+      PetscCheck(l[d][r] >= width, mpm.comm, PETSC_ERR_USER_INPUT,
+                 "-%s_regularization_length %g m spans %" PetscInt_FMT " cells, more than the %" PetscInt_FMT " nodes a rank owns along direction %" PetscInt_FMT ": use fewer ranks, a finer grid or a shorter length", material, (double)ell, width,
+                 l[d][r], d);
   }
   PetscCall(VecDestroy(&g.global));
   PetscCall(VecDestroy(&g.local));
@@ -111,7 +113,7 @@ PetscErrorCode NonlocalGridSetUp(MpmSolver &mpm, NonlocalGrid &g, PetscInt width
 
 // Linear hat weights of a particle: the lower node per direction and its two weights.
 struct Hat {
-  PetscInt  i[3] = {0, 0, 0};
+  PetscInt  i[3]    = {0, 0, 0};
   PetscReal w[3][2] = {{1, 0}, {1, 0}, {1, 0}};
 };
 inline Hat HatAt(const Grid &grid, const PetscReal *x)
@@ -144,10 +146,10 @@ void BellPass(const Grid &grid, const PetscInt xs[3], const PetscInt xm[3], cons
     for (PetscInt j = lo[1]; j < hi[1]; ++j)
       for (PetscInt i = lo[0]; i < hi[0]; ++i) {
         const PetscInt ijk[3] = {i, j, k}, base = ((k - gs[2]) * gm[1] + (j - gs[1])) * gm[0] + (i - gs[0]);
-        const PetscInt c      = ijk[dir];
+        const PetscInt c         = ijk[dir];
         PetscReal      sum[kDof] = {};
         for (PetscInt off = -width; off <= width; ++off) {
-          PetscInt n = c + off;
+          PetscInt n       = c + off;
           bool     outside = false;
           while (!outside && (n < 0 || n > M - 1)) { // mirrored images (repeatedly, for a strip between two symmetry faces)
             if (n < 0) {
@@ -199,12 +201,13 @@ PetscErrorCode NonlocalAverage(MpmSolver &mpm)
     PetscInt xs[3] = {0, 0, 0}, xm[3] = {1, 1, 1}, gs[3] = {0, 0, 0}, gm[3] = {1, 1, 1};
     PetscCall(DMDAGetCorners(g->da, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
     PetscCall(DMDAGetGhostCorners(g->da, &gs[0], &gs[1], &gs[2], &gm[0], &gm[1], &gm[2]));
-    auto local_index = [&](const PetscInt ijk[3]) { return ((ijk[2] - gs[2]) * gm[1] + (ijk[1] - gs[1])) * gm[0] + (ijk[0] - gs[0]); };
+    auto             local_index = [&](const PetscInt ijk[3]) { return ((ijk[2] - gs[2]) * gm[1] + (ijk[1] - gs[1])) * gm[0] + (ijk[0] - gs[0]); };
     PetscInt         n;
     const PetscReal *x, *source;
     PetscReal       *average;
     const PetscInt  *material;
-    SwarmAccess      fields(mpm.swarm);
+
+    SwarmAccess fields(mpm.swarm);
     PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::material, &material));
@@ -238,8 +241,8 @@ PetscErrorCode NonlocalAverage(MpmSolver &mpm)
     {
       const PetscReal *in;
       PetscCall(VecGetArrayRead(g->local, &in));
-      const PetscReal *src = in;
-      PetscInt         buf = 0;
+      const PetscReal       *src = in;
+      PetscInt               buf = 0;
       std::vector<PetscReal> a(2 * width + 1); // once per step and material, not per particle
       for (PetscInt d = 0; d < grid.dim; ++d) {
         for (PetscInt o = -width; o <= width; ++o) {
@@ -254,7 +257,7 @@ PetscErrorCode NonlocalAverage(MpmSolver &mpm)
       // the owned nodes to the global vector, then ghosts for the G2P
       PetscReal *out;
       PetscCall(VecGetArray(g->global, &out));
-      PetscInt   q = 0;
+      PetscInt q = 0;
       for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
         for (PetscInt j = xs[1]; j < xs[1] + xm[1]; ++j)
           for (PetscInt i = xs[0]; i < xs[0] + xm[0]; ++i, ++q) {
@@ -269,14 +272,14 @@ PetscErrorCode NonlocalAverage(MpmSolver &mpm)
     PetscCall(VecGetArrayRead(g->local, &G));
     for (PetscInt p = 0; p < n; ++p) {
       if (material[p] != id) continue;
-      const Hat h      = HatAt(grid, x + grid.dim * p);
+      const Hat h         = HatAt(grid, x + grid.dim * p);
       PetscReal sum[kDof] = {};
       for (PetscInt c = 0; c < nx; ++c)
         for (PetscInt b = 0; b < 2; ++b)
           for (PetscInt a = 0; a < 2; ++a) {
-            const PetscInt ijk[3] = {h.i[0] + a, h.i[1] + b, grid.dim == 3 ? h.i[2] + c : 0};
-            const PetscReal w = h.w[0][a] * h.w[1][b] * h.w[2][c];
-            const PetscReal *v = G + kDof * local_index(ijk);
+            const PetscInt   ijk[3] = {h.i[0] + a, h.i[1] + b, grid.dim == 3 ? h.i[2] + c : 0};
+            const PetscReal  w      = h.w[0][a] * h.w[1][b] * h.w[2][c];
+            const PetscReal *v      = G + kDof * local_index(ijk);
             for (PetscInt e = 0; e < kDof; ++e) sum[e] += w * v[e];
           }
       const PetscReal *s = source + kDof * p;

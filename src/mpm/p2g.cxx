@@ -24,10 +24,10 @@ namespace burst {
 
 namespace {
 struct P2GKernel {
-  MpmSolver        &mpm;
+  MpmSolver         &mpm;
   P2GRequest         what;
   PetscScalar       *nodal;
-  const PetscScalar *vel = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
+  const PetscScalar *vel     = nullptr; // RemapMomentum: the ghosted [v_old, v_new] nodal velocities
   unsigned char     *reached = nullptr; // the P2G of the masses: marks each particle's first stencil node
   template <int DIM, ShapeType S>
   PetscErrorCode operator()()
@@ -75,7 +75,7 @@ struct P2GKernel {
   {
     constexpr bool APIC = APIC_ && MOM;
     static_assert(!REMAP || (MOM && !MASS && !FORCE && !APIC), "the remap sums momentum only");
-    const Grid          &g = mpm.grid;
+    const Grid          &g   = mpm.grid;
     const PetscInt       dof = g.num_velocity_fields * g.NodeStride();
     const LocalNodeIndex index(g);
     PetscInt             n;
@@ -85,8 +85,8 @@ struct P2GKernel {
     const PetscReal      flip = mpm.flip_fraction, dt = mpm.dt;
     PetscReal            work = 0; // the remap: work of the external forces (as in G2P)
     (void)vdof, (void)flip, (void)dt;
-    const PetscInt      *failed = nullptr, *material = nullptr;
-    const PetscInt       stride = g.NodeStride(), nvf = g.num_velocity_fields;
+    const PetscInt *failed = nullptr, *material = nullptr;
+    const PetscInt  stride = g.NodeStride(), nvf = g.num_velocity_fields;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
     SwarmAccess fields(mpm.swarm);
@@ -115,7 +115,7 @@ struct P2GKernel {
         Stencil<DIM, S> &st = stencils[p];
         if (fill) st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
         if constexpr (MASS) reached[index(st.idx[0][0], st.idx[1][0], DIM == 3 ? st.idx[DIM - 1][0] : 0)] = 1;
-        const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0); // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
+        const PetscReal  mp = m[p], Vp = vol[p], qp = q[p] - (ambient ? ambient[p] : 0);            // sigma - q I + (p_gas - p_ref) I (ice.md 2.3)
         const PetscInt   vf = nvf > 1 ? mpm.VelocityField(material[p], failed ? failed[p] : 0) : 0; // converted and rigid particles: their own fields
         const PetscReal *xp = x + DIM * p;
         // The particle's values in locals: the node array's stores cannot alias them, so the scatter
@@ -132,7 +132,7 @@ struct P2GKernel {
         // a rigid particle carries no stress, and its field's velocity is prescribed (the grid update
         // sets it, so its momentum is never read): mass and the mass gradient only, for the contact
         const bool deformable = !(material && material[p] == mpm.rigid_material);
-        PetscReal hoop = 0; // axisymmetric: V_p sigma_tt / r_p
+        PetscReal  hoop       = 0; // axisymmetric: V_p sigma_tt / r_p
         if constexpr (AXI) hoop = Vp * sigma[9 * p + 8] / xp[0];
         (void)hoop;
         // deformable or rigid as a compile-time switch per particle (a runtime test in the node loop
@@ -141,6 +141,7 @@ struct P2GKernel {
         // is read only by the contact between two deformable fields (grid_update.cxx)
         auto scatter = [&](auto deformable_p, auto gradient_p) {
           constexpr bool body = decltype(deformable_p)::value, do_force_p = do_force && body, do_mom_p = do_mom && body, do_gradient = decltype(gradient_p)::value;
+
           auto add = [&](PetscScalar *node, PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
             (void)i, (void)j, (void)k; // APIC only: the node position
             if constexpr (do_mass) {
@@ -149,8 +150,8 @@ struct P2GKernel {
                 for (int a = 0; a < DIM; ++a) node[1 + 2 * DIM + a] += mp * dN[a]; // sum m_p grad N_I(x_p): points out of the body (contact normals)
             }
             if constexpr (APIC && body) {
-              PetscReal dx[3] = {0, 0, 0};
-              const PetscInt I[3] = {i, j, k};
+              PetscReal      dx[3] = {0, 0, 0};
+              const PetscInt I[3]  = {i, j, k};
               for (int b = 0; b < DIM; ++b) dx[b] = g.axes[b].origin + I[b] * g.axes[b].h - xp[b];
               const PetscReal *C = affine + 9 * p;
               for (int a = 0; a < DIM; ++a) {
@@ -179,8 +180,7 @@ struct P2GKernel {
             }
             if constexpr (AXI && do_force_p) node[1 + DIM] -= hoop * N; // the hoop stress pulls the radial force inwards
           };
-          if constexpr (APIC && body)
-            ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { add(nodal + index(i, j, k) * dof + vf * stride, i, j, k, N, dN); });
+          if constexpr (APIC && body) ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) { add(nodal + index(i, j, k) * dof + vf * stride, i, j, k, N, dN); });
           else ForEachLocalNode(st, index, dof, [&](PetscInt at, PetscReal N, const PetscReal dN[]) { add(nodal + at + vf * stride, 0, 0, 0, N, dN); });
         };
         if (!deformable) {
@@ -233,7 +233,7 @@ static PetscErrorCode SpreadReached(MpmSolver &mpm)
   unsigned char *r       = g.reached.data();
   PetscInt       xs[3], xm[3];
   PetscFunctionBeginUser;
-  for (PetscInt d = 0; d < g.dim; ++d) { // node i takes the marks of i - 1 .. i - spread: descending i reads unspread marks
+  for (PetscInt d = 0; d < g.dim; ++d) {                          // node i takes the marks of i - 1 .. i - spread: descending i reads unspread marks
     const PetscInt outer = n[0] * n[1] * n[2] / (step[d] * n[d]); // lines (d = 0) or planes above direction d
     for (PetscInt o = 0; o < outer; ++o) {
       unsigned char *base = r + o * step[d] * n[d];
@@ -246,7 +246,7 @@ static PetscErrorCode SpreadReached(MpmSolver &mpm)
   }
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
   for (PetscInt d = 0; d < g.dim; ++d) {
-    PetscInt lo[3] = {0, 0, 0}, hi[3] = {n[0], n[1], n[2]};
+    PetscInt       lo[3] = {0, 0, 0}, hi[3] = {n[0], n[1], n[2]};
     const PetscInt own_lo = xs[d] - g.gxs[d], own_hi = own_lo + xm[d]; // owned planes [own_lo, own_hi)
     for (int side = 0; side < 2; ++side) {
       if (side == 0 ? own_lo == 0 : own_hi == n[d]) continue; // no ghost nodes on this side

@@ -47,9 +47,7 @@ bool Geometry::Contains(const PetscReal x[]) const
     for (PetscInt d = 0; d < dim; ++d)
       if (x[d] < lower[d] || x[d] > upper[d]) return false;
     return true;
-  case GeometryType::Sphere:
-    RadialDirection(x, r_hat, &r);
-    return r <= radius;
+  case GeometryType::Sphere: RadialDirection(x, r_hat, &r); return r <= radius;
   default: break;
   }
   // disk / cylinder / annulus: in-plane radius, sector, and z-extent in 3-D
@@ -101,9 +99,9 @@ PetscErrorCode ReadLoadCurves(MpmSolver &mpm)
 
 PetscErrorCode ReadGeometries(MpmSolver &mpm)
 {
-  char     *names[64];
-  PetscInt  n = 64;
-  PetscBool set;
+  char          *names[64];
+  PetscInt       n = 64;
+  PetscBool      set;
   const PetscInt dim = mpm.grid.dim;
   PetscFunctionBeginUser;
   PetscOptionsBegin(mpm.comm, "", "Geometry objects", "Seeding");
@@ -116,12 +114,12 @@ PetscErrorCode ReadGeometries(MpmSolver &mpm)
   }
   PetscCheck(set && n > 0, mpm.comm, PETSC_ERR_USER_INPUT, "No particles: give -geometries name1,name2,... and configure each with -<name>_type (box, disk, cylinder, annulus, sphere)");
   for (PetscInt gi = 0; gi < n; ++gi) {
-    auto  g     = std::make_unique<Geometry>();
-    int   type  = 0, surface = 0;
-    char  material[256] = "", curve[256] = "";
+    auto      g    = std::make_unique<Geometry>();
+    int       type = 0, surface = 0;
+    char      material[256] = "", curve[256] = "";
     PetscBool has_type = PETSC_FALSE, has_material = PETSC_FALSE, has_curve = PETSC_FALSE;
-    g->name = names[gi];
-    g->dim  = dim;
+    g->name               = names[gi];
+    g->dim                = dim;
     const std::string pre = g->name + "_";
     const char       *P   = pre.c_str();
     PetscOptionsBegin(mpm.comm, P, "Geometry object", "Seeding");
@@ -186,9 +184,9 @@ struct SeedPoint {
 
 PetscErrorCode SeedParticles(MpmSolver &mpm)
 {
-  const Grid &g   = mpm.grid;
-  const PetscInt dim = g.dim;
-  PetscInt    xs[3], xm[3];
+  const Grid            &g   = mpm.grid;
+  const PetscInt         dim = g.dim;
+  PetscInt               xs[3], xm[3];
   std::vector<SeedPoint> points;
   PetscFunctionBeginUser;
   PetscCall(DMDAGetCorners(g.da_nodes, &xs[0], &xs[1], &xs[2], &xm[0], &xm[1], &xm[2]));
@@ -233,8 +231,8 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
       for (PetscInt i = xs[0]; i < ce[0]; ++i) {
         const PetscInt cell[3] = {i, j, k};
         for (PetscInt gi = 0; gi < (PetscInt)mpm.geometries.size(); ++gi) {
-          const Geometry &geo = *mpm.geometries[gi];
-          const PetscInt  ppc = geo.particles_per_cell;
+          const Geometry &geo  = *mpm.geometries[gi];
+          const PetscInt  ppc  = geo.particles_per_cell;
           const PetscInt  nsub = dim == 2 ? ppc * ppc : ppc * ppc * ppc;
           for (PetscInt s = 0; s < nsub; ++s) {
             const PetscInt sub[3] = {s % ppc, (s / ppc) % ppc, s / (ppc * ppc)};
@@ -245,7 +243,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
             bool claimed = false;
             for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = mpm.geometries[gj]->Contains(pt.x);
             if (claimed) continue;
-            pt.geometry = gi;
+            pt.geometry              = gi;
             const PetscInt64 cell_id = i + (PetscInt64)g.cells[0] * (j + (PetscInt64)g.cells[1] * k);
             pt.id                    = (cell_id * ngeom + gi) * max_sub + s;
             points.push_back(pt);
@@ -253,15 +251,15 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
         }
       }
 
-  const PetscInt n = (PetscInt)points.size();
+  const PetscInt n     = (PetscInt)points.size();
   PetscInt64     local = n;
   PetscCallMPI(MPI_Allreduce(&local, &mpm.total_particles, 1, MPIU_INT64, MPI_SUM, mpm.comm));
   mpm.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first unused id
   PetscCheck(mpm.total_particles > 0, mpm.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
   PetscCall(DMSwarmSetLocalSizes(mpm.swarm, n, 16));
 
-  PetscReal *x, *v, *mass, *vol, *vol0, *X0, *hw, *F, *sigma, *L, *T, *c, *e, *fext, *area;
-  PetscInt  *mat, *curve, *cell;
+  PetscReal  *x, *v, *mass, *vol, *vol0, *X0, *hw, *F, *sigma, *L, *T, *c, *e, *fext, *area;
+  PetscInt   *mat, *curve, *cell;
   PetscInt64 *pid;
   SwarmAccess fields(mpm.swarm);
   PetscCall(fields.Get(DMSwarmPICField_coor, &x));
@@ -297,16 +295,16 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
     const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (mpm.axisymmetric ? points[p].x[0] : 1.0);
     PetscReal       r_hat[3], r;
     geo.RadialDirection(points[p].x, r_hat, &r);
-    pid[p]   = points[p].id;
-    cell[p]  = -1;
-    mat[p]   = geo.material;
-    mass[p]  = mpm.materials[geo.material]->Density() * sub_volume;
-    vol[p]   = sub_volume;
-    vol0[p]  = sub_volume;
-    T[p]     = geo.temperature;
-    c[p]     = 0;
-    e[p]     = 0;
-    curve[p] = -1;
+    pid[p]      = points[p].id;
+    cell[p]     = -1;
+    mat[p]      = geo.material;
+    mass[p]     = mpm.materials[geo.material]->Density() * sub_volume;
+    vol[p]      = sub_volume;
+    vol0[p]     = sub_volume;
+    T[p]        = geo.temperature;
+    c[p]        = 0;
+    e[p]        = 0;
+    curve[p]    = -1;
     q[p]        = 0;
     fragment[p] = -1;
     if (ambient) ambient[p] = 0;
@@ -316,10 +314,10 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
       affine[9 * p + 3] = geo.angular_velocity;
     }
     for (PetscInt d = 0; d < dim; ++d) {
-      x[p * dim + d]    = points[p].x[d];
-      X0[p * dim + d]   = points[p].x[d];
-      hw[p * dim + d]   = 0.5 * g.h[d] / ppc;
-      v[p * dim + d]    = geo.velocity[d] + geo.radial_velocity * r_hat[d];
+      x[p * dim + d]  = points[p].x[d];
+      X0[p * dim + d] = points[p].x[d];
+      hw[p * dim + d] = 0.5 * g.h[d] / ppc;
+      v[p * dim + d]  = geo.velocity[d] + geo.radial_velocity * r_hat[d];
       if (geo.angular_velocity != 0 && d < 2) v[p * dim + d] += geo.angular_velocity * (d == 0 ? -(points[p].x[1] - geo.center[1]) : points[p].x[0] - geo.center[0]);
       fext[p * dim + d] = 0;
       area[p * dim + d] = 0;
@@ -334,8 +332,8 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
     if (geo.pressure_surface != PressureSurface::None) {
       PetscReal depth = g.h[0] / ppc;
       for (PetscInt d = 1; d < dim; ++d) depth = PetscMin(depth, g.h[d] / ppc);
-      const bool inner = geo.pressure_surface == PressureSurface::Inner;
-      const PetscReal dist = inner ? r - (geo.type == GeometryType::Annulus ? geo.inner_radius : 0) : geo.radius - r;
+      const bool      inner = geo.pressure_surface == PressureSurface::Inner;
+      const PetscReal dist  = inner ? r - (geo.type == GeometryType::Annulus ? geo.inner_radius : 0) : geo.radius - r;
       if (dist >= 0 && dist < depth && !(inner && geo.type != GeometryType::Annulus)) {
         curve[p] = geo.load_curve;
         for (PetscInt d = 0; d < dim; ++d) area[p * dim + d] = (inner ? -1.0 : 1.0) * r_hat[d] * sub_volume / depth;
@@ -346,7 +344,8 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
   {
     MaterialPointFields f;
     MaterialState       state;
-    SwarmAccess         views(mpm.swarm);
+
+    SwarmAccess views(mpm.swarm);
     PetscCall(GetMaterialPointFields(views, mpm.swarm, state, f));
     for (auto &m : mpm.materials) PetscCall(m->InitializeState(f, 0, n));
     PetscCall(views.RestoreAll());

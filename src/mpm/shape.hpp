@@ -29,16 +29,20 @@ namespace burst {
 enum class ShapeType : int { Linear = 0, UGimp = 1, CpGimp = 2, BSpline2 = 3 };
 
 // Number of nodes per direction in the support of each interpolator.
-template <ShapeType S> constexpr int ShapeNodes() { return S == ShapeType::Linear ? 2 : 3; }
+template <ShapeType S>
+constexpr int ShapeNodes()
+{
+  return S == ShapeType::Linear ? 2 : 3;
+}
 
 // Ghost width of the node DMDA needed by an interpolator with the lower-node cell ownership.
 inline PetscInt ShapeGhostWidth(ShapeType s) { return s == ShapeType::Linear ? 1 : 2; }
 
 // Per-direction grid description used by the kernels.
 struct Axis {
-  PetscReal origin;  // coordinate of node 0, m
-  PetscReal h;       // node spacing, m
-  PetscInt  nodes;   // number of nodes M
+  PetscReal origin; // coordinate of node 0, m
+  PetscReal h;      // node spacing, m
+  PetscInt  nodes;  // number of nodes M
 };
 
 // Two doubles operated on lane by lane (GCC/Clang vector extension): the transfers carry rows 0 and 1
@@ -135,8 +139,8 @@ inline void GimpWeights1D(const Axis &a, PetscReal x, PetscReal lp, PetscInt idx
   w[2]               = t2 * (u2 - 0.5 * t2) * inv_2hlp;
   dw[2]              = t2 * inv_2hlp;
   const PetscReal ad = std::fabs(d1), m = PetscMax(lp - ad, 0.0);
-  w[1]               = 1 - ad * inv_h - m * m * inv_2hlp;
-  dw[1]              = -2 * std::copysign(lp - m, d1) * inv_2hlp;
+  w[1]  = 1 - ad * inv_h - m * m * inv_2hlp;
+  dw[1] = -2 * std::copysign(lp - m, d1) * inv_2hlp;
   ExtrapolateWallNodes(a, nearest, idx, w, dw);
 }
 
@@ -163,11 +167,11 @@ inline void BSpline2Weights1D(const Axis &a, PetscReal x, PetscInt idx[], PetscR
 // about 16 of 27). ForEachNode visits only those; the others would add exact zeros.
 template <int DIM, ShapeType S>
 struct Stencil {
-  static constexpr int  NS      = ShapeNodes<S>();
+  static constexpr int  NS       = ShapeNodes<S>();
   static constexpr bool kTrimmed = S == ShapeType::UGimp || S == ShapeType::CpGimp;
-  PetscInt             idx[DIM][NS];
-  PetscReal            w[DIM][NS], dw[DIM][NS];
-  unsigned char        lo[DIM], hi[DIM]; // GIMP: live nodes lo..hi of each direction (else 0..NS-1)
+  PetscInt              idx[DIM][NS];
+  PetscReal             w[DIM][NS], dw[DIM][NS];
+  unsigned char         lo[DIM], hi[DIM]; // GIMP: live nodes lo..hi of each direction (else 0..NS-1)
 
   // x: particle position; lp0: initial particle half-widths; F: deformation gradient (row-major 3x3,
   // used by cpGIMP only).
@@ -235,11 +239,11 @@ struct StencilCache {
 template <int DIM, ShapeType S, class Fn>
 inline void ForEachStencilNode(const Stencil<DIM, S> &st, Fn &&f)
 {
-  using St                 = Stencil<DIM, S>;
-  constexpr int  NS        = St::NS;
-  constexpr bool trimmed   = St::kTrimmed;
-  const int      lo[3]     = {trimmed ? st.lo[0] : 0, trimmed ? st.lo[1] : 0, trimmed && DIM == 3 ? st.lo[DIM - 1] : 0};
-  const int      end[3]    = {trimmed ? st.hi[0] + 1 : NS, trimmed ? st.hi[1] + 1 : NS, trimmed && DIM == 3 ? st.hi[DIM - 1] + 1 : NS};
+  using St               = Stencil<DIM, S>;
+  constexpr int  NS      = St::NS;
+  constexpr bool trimmed = St::kTrimmed;
+  const int      lo[3]   = {trimmed ? st.lo[0] : 0, trimmed ? st.lo[1] : 0, trimmed && DIM == 3 ? st.lo[DIM - 1] : 0};
+  const int      end[3]  = {trimmed ? st.hi[0] + 1 : NS, trimmed ? st.hi[1] + 1 : NS, trimmed && DIM == 3 ? st.hi[DIM - 1] + 1 : NS};
   if constexpr (DIM == 2) {
     for (int b = lo[1]; b < end[1]; ++b)
       for (int a = lo[0]; a < end[0]; ++a) {

@@ -11,7 +11,8 @@ PetscErrorCode UpdateStress(MpmSolver &mpm)
 {
   MaterialPointFields f;
   MaterialState       state;
-  SwarmAccess         fields(mpm.swarm);
+
+  SwarmAccess fields(mpm.swarm);
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(mpm.ev_stress, 0, 0, 0, 0));
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
@@ -48,7 +49,8 @@ PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm)
 {
   MaterialPointFields f;
   MaterialState       state;
-  SwarmAccess         fields(mpm.swarm);
+
+  SwarmAccess fields(mpm.swarm);
   PetscFunctionBeginUser;
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
   f.time = mpm.time;
@@ -63,11 +65,11 @@ PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm)
 // Stops the run on a NaN or non-positive density, naming the phase, step, particle and field.
 PetscErrorCode CheckParticleState(MpmSolver &mpm, const char phase[])
 {
-  PetscInt         n, dim = mpm.grid.dim, bad = -1;
-  const PetscReal *x, *v, *sigma, *vol, *m;
+  PetscInt          n, dim = mpm.grid.dim, bad = -1;
+  const PetscReal  *x, *v, *sigma, *vol, *m;
   const PetscInt64 *pid;
-  const char      *what = "";
-  PetscInt64       bad_pid = -1;
+  const char       *what    = "";
+  PetscInt64        bad_pid = -1;
   PetscFunctionBeginUser;
   PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
   SwarmAccess fields(mpm.swarm);

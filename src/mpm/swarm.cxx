@@ -108,7 +108,7 @@ PetscErrorCode ComputeOwnerRanks(MpmSolver &mpm, PetscInt *num_outside, bool nee
   }
   for (PetscInt p = 0; p < n; ++p) {
     PetscInt slot[3] = {0, 0, 0}, c[3] = {0, 0, 0};
-    bool     inside  = true;
+    bool     inside = true;
     for (PetscInt d = 0; d < dim; ++d) {
       const PetscReal xd = x[p * dim + d];
       if (!(xd >= lower[d] && xd <= upper[d])) { // also catches NaN
@@ -208,7 +208,8 @@ PetscErrorCode MigrateParticles(MpmSolver &mpm)
       PetscCall(fields.Get(DMSwarmField_rank, &rank));
       for (PetscInt p = 0; p < np; ++p)
         if (rank[p] < 0) {
-          PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", mpm.rank, mpm.step, p, (double)x[p * mpm.grid.dim], (double)x[p * mpm.grid.dim + 1], mpm.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
+          PetscCall(PetscPrintf(PETSC_COMM_SELF, "[%d] step %" PetscInt_FMT ": particle %" PetscInt_FMT " left the domain at (%g, %g, %g) m\n", mpm.rank, mpm.step, p, (double)x[p * mpm.grid.dim], (double)x[p * mpm.grid.dim + 1],
+                                mpm.grid.dim == 3 ? (double)x[p * 3 + 2] : 0.0));
           break;
         }
       PetscCall(fields.RestoreAll());
@@ -266,7 +267,8 @@ PetscErrorCode SortParticlesByCell(MpmSolver &mpm)
   bool                  sorted = true;
   {
     const PetscInt *cell;
-    SwarmAccess     fields(mpm.swarm);
+
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_cellid, &cell));
     PetscInt lo = PETSC_MAX_INT, hi = -1;
     for (PetscInt p = 0; p < n; ++p) {

@@ -89,9 +89,9 @@ public:
   }
 
 private:
-  DM                                           swarm_;
+  DM                                              swarm_;
   std::array<std::pair<const char *, void *>, 48> held_{};
-  int                                          count_ = 0;
+  int                                             count_ = 0;
 };
 
 } // namespace burst

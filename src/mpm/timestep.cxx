@@ -41,7 +41,9 @@ PetscErrorCode ComputeTimeStep(MpmSolver &mpm, PetscReal final_time)
   static PetscInt warned_step = -1; // a fixed step beyond the stable one is said once per run, when first seen
   if (mpm.dt_fixed > global && warned_step < 0) {
     warned_step = mpm.step;
-    PetscCall(PetscPrintf(mpm.comm, "Warning: -mpm_dt = %g s is %.3g times the particles' stable step min h/(c + |v|) = %g s at step %" PetscInt_FMT " (Courant number above 1): the solids' update is unstable; give -mpm_dt 0 for the CFL rule (-mpm_cfl %g)\n", (double)mpm.dt_fixed, (double)(mpm.dt_fixed / global), (double)global, mpm.step, (double)mpm.cfl));
+    PetscCall(PetscPrintf(mpm.comm,
+                          "Warning: -mpm_dt = %g s is %.3g times the particles' stable step min h/(c + |v|) = %g s at step %" PetscInt_FMT " (Courant number above 1): the solids' update is unstable; give -mpm_dt 0 for the CFL rule (-mpm_cfl %g)\n",
+                          (double)mpm.dt_fixed, (double)(mpm.dt_fixed / global), (double)global, mpm.step, (double)mpm.cfl));
   }
   mpm.dt = mpm.dt_fixed > 0 ? mpm.dt_fixed : PetscMin(mpm.cfl * global, mpm.dt_max);
   PetscCheck(mpm.dt > 0 && std::isfinite(mpm.dt), mpm.comm, PETSC_ERR_NOT_CONVERGED, "Step %" PetscInt_FMT ": time step %g s is not positive; check the material wave speeds", mpm.step, (double)mpm.dt);
@@ -65,10 +67,10 @@ bool HasExternalForces(const MpmSolver &mpm)
 // n da = J F^{-T} N dA.
 PetscErrorCode ComputeExternalForces(MpmSolver &mpm)
 {
-  PetscInt         n, dim = mpm.grid.dim;
-  PetscReal       *fext;
-  const PetscReal *m, *area0, *F, *X0;
-  const PetscInt  *curve;
+  PetscInt               n, dim = mpm.grid.dim;
+  PetscReal             *fext;
+  const PetscReal       *m, *area0, *F, *X0;
+  const PetscInt        *curve;
   std::vector<PetscReal> pressure(mpm.load_curves.size());
   PetscFunctionBeginUser;
   for (size_t c = 0; c < mpm.load_curves.size(); ++c) pressure[c] = mpm.load_curves[c].Evaluate(mpm.time);
@@ -92,7 +94,7 @@ PetscErrorCode ComputeExternalForces(MpmSolver &mpm)
     }
     for (PetscInt d = 0; d < dim; ++d) fext[dim * p + d] = m[p] * (mpm.gravity[d] + b[d]);
     if (curve[p] >= 0) {
-      Mat3CMap                 Fp(F + 9 * p);
+      Mat3CMap                       Fp(F + 9 * p);
       Eigen::Matrix<PetscReal, 3, 1> N0 = Eigen::Matrix<PetscReal, 3, 1>::Zero();
       for (PetscInt d = 0; d < dim; ++d) N0[d] = area0[dim * p + d];
       const Eigen::Matrix<PetscReal, 3, 1> nda = Fp.determinant() * Fp.inverse().transpose() * N0;

@@ -7,9 +7,9 @@ namespace burst {
 
 class BarMode final : public AnalyticSolution {
 public:
-  PetscReal length = 25, amplitude = 0.1, wave_number = 0, frequency = 0;
+  PetscReal   length = 25, amplitude = 0.1, wave_number = 0, frequency = 0;
   const char *Name() const override { return "bar_mode"; }
-  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  void        Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
   {
     for (int d = 0; d < 3; ++d) u[d] = 0;
     u[0] = amplitude / frequency * std::sin(frequency * t) * std::sin(wave_number * X[0]);
@@ -28,11 +28,11 @@ public:
 
 class AxisAligned final : public AnalyticSolution {
 public:
-  PetscReal amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
+  PetscReal   amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
   const char *Name() const override { return "axis_aligned"; }
   // Phase of each displacement component: 0, 2 pi/3, 4 pi/3 (W&G 2008).
   PetscReal Phase(int d) const { return d * 2.0 * PETSC_PI / 3.0; }
-  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  void      Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
   {
     for (int d = 0; d < 3; ++d) u[d] = d < dim ? amplitude * std::sin(PETSC_PI * X[d]) * std::sin(c * PETSC_PI * t + Phase(d)) : 0;
   }
@@ -55,7 +55,7 @@ public:
     const PetscReal J = F[0] * F[4] * F[8], lnJ = std::log(J);
     for (int d = 0; d < 3; ++d) {
       const PetscReal Fdd = F[4 * d];
-      b[d] = d < dim ? PETSC_PI * PETSC_PI * u[d] * (mu / rho0 - c * c - (lambda * (lnJ - 1) - mu) / (rho0 * Fdd * Fdd)) : 0;
+      b[d]                = d < dim ? PETSC_PI * PETSC_PI * u[d] * (mu / rho0 - c * c - (lambda * (lnJ - 1) - mu) / (rho0 * Fdd * Fdd)) : 0;
     }
   }
 };
@@ -69,9 +69,9 @@ public:
 // u_r = 0 on the axis and at R = 1, u_z = 0 at Z = 0, 1: rollers on every face, no shear traction.
 class AxisymmetricRadial final : public AnalyticSolution {
 public:
-  PetscReal amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
+  PetscReal   amplitude = 0.05, mu = 0, lambda = 0, rho0 = 1, c = 0;
   const char *Name() const override { return "axisymmetric_radial"; }
-  void Phases(PetscReal t, PetscReal &sr, PetscReal &sz) const
+  void        Phases(PetscReal t, PetscReal &sr, PetscReal &sz) const
   {
     sr = std::sin(c * PETSC_PI * t);
     sz = std::sin(c * PETSC_PI * t + 2.0 * PETSC_PI / 3.0);
@@ -99,9 +99,9 @@ public:
   void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override
   {
     const PetscReal w = c * PETSC_PI;
-    v[0] = amplitude * w * std::sin(PETSC_PI * X[0]) * std::cos(w * t);
-    v[1] = amplitude * w * std::sin(PETSC_PI * X[1]) * std::cos(w * t + 2.0 * PETSC_PI / 3.0);
-    v[2] = 0;
+    v[0]              = amplitude * w * std::sin(PETSC_PI * X[0]) * std::cos(w * t);
+    v[1]              = amplitude * w * std::sin(PETSC_PI * X[1]) * std::cos(w * t + 2.0 * PETSC_PI / 3.0);
+    v[2]              = 0;
   }
   void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
   {
@@ -130,10 +130,10 @@ public:
     const PetscReal dPzz = mu * (1 + 1 / (Fzz * Fzz)) * dFzz + lambda * (dlnJ_Z / Fzz - lnJ * dFzz / (Fzz * Fzz));
     // (P_rr - P_tt)/R: both -> the same value on the axis; R >= h/(2 ppc) > 0 for particles
     const PetscReal hoop = (Prr - Ptt) / R;
-    const PetscReal w2 = (c * pi) * (c * pi);
-    b[0] = -A * w2 * std::sin(pi * R) * sr - (dPrr + hoop) / rho0;
-    b[1] = -A * w2 * std::sin(pi * Z) * sz - dPzz / rho0;
-    b[2] = 0;
+    const PetscReal w2   = (c * pi) * (c * pi);
+    b[0]                 = -A * w2 * std::sin(pi * R) * sr - (dPrr + hoop) / rho0;
+    b[1]                 = -A * w2 * std::sin(pi * Z) * sz - dPzz / rho0;
+    b[2]                 = 0;
   }
 };
 
@@ -141,14 +141,25 @@ public:
 // f = sin (ends held at T0) or cos (insulated ends).
 class HeatMode final : public AnalyticSolution {
 public:
-  bool      cosine = false;
-  PetscReal length = 1, amplitude = 10, T0 = 300, alpha = 0;
+  bool        cosine = false;
+  PetscReal   length = 1, amplitude = 10, T0 = 300, alpha = 0;
   const char *Name() const override { return cosine ? "heat_cosine" : "heat_sine"; }
-  void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override { (void)X; (void)t; for (int d = 0; d < 3; ++d) u[d] = 0; }
-  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override { (void)X; (void)t; for (int d = 0; d < 3; ++d) v[d] = 0; }
+  void        Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const override
+  {
+    (void)X;
+    (void)t;
+    for (int d = 0; d < 3; ++d) u[d] = 0;
+  }
+  void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const override
+  {
+    (void)X;
+    (void)t;
+    for (int d = 0; d < 3; ++d) v[d] = 0;
+  }
   void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const override
   {
-    (void)X; (void)t;
+    (void)X;
+    (void)t;
     for (int a = 0; a < 9; ++a) F[a] = (a % 4 == 0) ? 1.0 : 0.0;
   }
   bool      HasTemperature() const override { return true; }
@@ -163,15 +174,16 @@ static const char *const AnalyticNames[] = {"none", "bar_mode", "axis_aligned", 
 
 PetscErrorCode CreateAnalyticSolution(Simulation &sim)
 {
-  int       type = 0;
+  int       type          = 0;
   char      material[256] = "";
-  PetscBool has_material = PETSC_FALSE;
+  PetscBool has_material  = PETSC_FALSE;
   PetscReal amplitude = -1, length = -1, T0 = 300;
   PetscFunctionBeginUser;
   PetscOptionsBegin(sim.comm, "", "Analytic solutions for verification", "Analytic");
   PetscCall(OptionsChoice(PetscOptionsObject, "-analytic", "Analytic solution that sets the initial state, body force and the error monitor", AnalyticNames, 6, &type, nullptr));
   PetscCall(PetscOptionsString("-analytic_material", "Material whose parameters the analytic solution uses (default: the first of -materials)", "", material, material, sizeof(material), &has_material));
-  PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05); heat_sine/heat_cosine: temperature amplitude dT (K, default 10)", "", amplitude, &amplitude, nullptr));
+  PetscCall(PetscOptionsReal("-analytic_amplitude", "bar_mode: velocity amplitude v0 (m/s, default 0.1); axis_aligned: displacement amplitude A (m, default 0.05); heat_sine/heat_cosine: temperature amplitude dT (K, default 10)", "", amplitude,
+                             &amplitude, nullptr));
   PetscCall(PetscOptionsReal("-analytic_length", "bar_mode: bar length L (m), default 25; heat_sine/heat_cosine: bar length L (m, the bar is [0, L] in x), default 1", "", length, &length, nullptr));
   PetscCall(PetscOptionsReal("-analytic_temperature", "heat_sine/heat_cosine: base temperature T0 (K), > 0 (heat_sine: give the same to -mpm_heat_bc_xmin/xmax)", "", T0, &T0, nullptr));
   PetscOptionsEnd();

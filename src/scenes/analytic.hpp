@@ -16,19 +16,29 @@ namespace burst {
 
 class AnalyticSolution {
 public:
-  virtual ~AnalyticSolution() = default;
+  virtual ~AnalyticSolution()      = default;
   virtual const char *Name() const = 0;
   // Displacement u(X, t) and velocity of the material point with reference position X.
   virtual void Displacement(const PetscReal X[], PetscReal t, PetscReal u[]) const = 0;
-  virtual void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const = 0;
+  virtual void Velocity(const PetscReal X[], PetscReal t, PetscReal v[]) const     = 0;
   // Deformation gradient (row-major 3x3) at X, t.
   virtual void DeformationGradient(const PetscReal X[], PetscReal t, PetscReal F[]) const = 0;
   // Body force per unit mass (m/s^2) at X, t.
   virtual bool HasBodyForce() const { return false; }
-  virtual void BodyForce(const PetscReal X[], PetscReal t, PetscReal b[]) const { (void)X; (void)t; for (int d = 0; d < 3; ++d) b[d] = 0; }
+  virtual void BodyForce(const PetscReal X[], PetscReal t, PetscReal b[]) const
+  {
+    (void)X;
+    (void)t;
+    for (int d = 0; d < 3; ++d) b[d] = 0;
+  }
   // Temperature (K) at X, t, for the solutions that set and check one.
   virtual bool      HasTemperature() const { return false; }
-  virtual PetscReal Temperature(const PetscReal X[], PetscReal t) const { (void)X; (void)t; return 0; }
+  virtual PetscReal Temperature(const PetscReal X[], PetscReal t) const
+  {
+    (void)X;
+    (void)t;
+    return 0;
+  }
   PetscInt dim = 2;
 };
 

@@ -37,10 +37,10 @@ struct TaylorScene {
   PetscInt    cells_per_diameter = 16, particles_per_cell = 2;
   PetscReal   radius_factor = 2.5;
   std::string material_file = "copper_ofhc_jc", material;
-  PetscReal   anvil_top = 0; // z of the impact face, m
+  PetscReal   anvil_top     = 0; // z of the impact face, m
   // results
-  PetscReal   Lf[2] = {0, 0}, Df[2] = {0, 0}, D02[2] = {0, 0}, max_plastic_strain = 0, max_temperature = 0;
-  PetscInt    particles = 0;
+  PetscReal Lf[2] = {0, 0}, Df[2] = {0, 0}, D02[2] = {0, 0}, max_plastic_strain = 0, max_temperature = 0;
+  PetscInt  particles = 0;
 };
 
 // Reads an option file into (name, value) pairs on rank 0 and broadcasts them.
@@ -124,7 +124,8 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-taylor_radius_factor", t->radius_factor, 1.2, PETSC_MAX_REAL, PETSC_FALSE));
   PetscCheck(t->cells_per_diameter >= 2, sim.comm, PETSC_ERR_USER_INPUT, "Option -taylor_cells_per_diameter = %" PetscInt_FMT " is out of range: it must be >= 2", t->cells_per_diameter);
   PetscCheck(t->particles_per_cell >= 1 && t->particles_per_cell <= 16, sim.comm, PETSC_ERR_USER_INPUT, "Option -taylor_particles_per_cell = %" PetscInt_FMT " is out of range: it must be in [1, 16]", t->particles_per_cell);
-  PetscCheck((t->cells_per_diameter * t->particles_per_cell) % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT, "Options -taylor_cells_per_diameter %" PetscInt_FMT " x -taylor_particles_per_cell %" PetscInt_FMT " must be even, so that particles fill the rod radius exactly", t->cells_per_diameter, t->particles_per_cell);
+  PetscCheck((t->cells_per_diameter * t->particles_per_cell) % 2 == 0, sim.comm, PETSC_ERR_USER_INPUT,
+             "Options -taylor_cells_per_diameter %" PetscInt_FMT " x -taylor_particles_per_cell %" PetscInt_FMT " must be even, so that particles fill the rod radius exactly", t->cells_per_diameter, t->particles_per_cell);
   PetscCheck(dim == 2 || dim == 3, sim.comm, PETSC_ERR_USER_INPUT, "Option -dim = %" PetscInt_FMT " is not supported by -taylor: 2 (axisymmetric) or 3 (a quarter)", dim);
 
   // The material file: a path, or a name in options/materials/ (from here or from the source tree).
@@ -153,13 +154,13 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
 
   // Grid: h across, and along the axis the size that fits a whole number of cells in L0.
   const PetscReal R0 = 0.5 * t->diameter, h = t->diameter / t->cells_per_diameter;
-  const PetscInt  nr = (PetscInt)std::ceil(t->radius_factor * R0 / h - 1e-9);
-  const PetscInt  nl = PetscMax(1, (PetscInt)std::lround(t->length / h));
-  const PetscReal hz = t->length / nl;
-  const PetscInt  na = 2; // anvil cells
-  const PetscInt  nz = na + nl + 2;
-  t->anvil_top       = na * hz;
-  const PetscReal top = nz * hz, rmax = nr * h;
+  const PetscInt  nr    = (PetscInt)std::ceil(t->radius_factor * R0 / h - 1e-9);
+  const PetscInt  nl    = PetscMax(1, (PetscInt)std::lround(t->length / h));
+  const PetscReal hz    = t->length / nl;
+  const PetscInt  na    = 2; // anvil cells
+  const PetscInt  nz    = na + nl + 2;
+  t->anvil_top          = na * hz;
+  const PetscReal   top = nz * hz, rmax = nr * h;
   const std::string mat = t->material, ppc = std::to_string(t->particles_per_cell);
   PetscCall(SetDefault("-dim", std::to_string(dim)));
   PetscCall(SetDefault("-materials", mat + ",anvil"));
@@ -214,19 +215,20 @@ PetscErrorCode TaylorSceneOptions(Simulation &sim)
   }
   PetscCall(SetDefault("-stop_kinetic_fraction", "0.01"));
   PetscCall(SetDefault("-final_time", Num(4 * t->length / t->velocity))); // a cap: the kinetic-energy stop ends it first
-  PetscCall(PetscInfo(nullptr, "Taylor scene: L0 %g m, D0 %g m, U %g m/s, T0 %g K, material %s (%s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g m\n", (double)t->length, (double)t->diameter, (double)t->velocity, (double)t->temperature, mat.c_str(), path.c_str(), nr, nz, (double)h, (double)hz));
+  PetscCall(PetscInfo(nullptr, "Taylor scene: L0 %g m, D0 %g m, U %g m/s, T0 %g K, material %s (%s), %" PetscInt_FMT " x %" PetscInt_FMT " cells of %g x %g m\n", (double)t->length, (double)t->diameter, (double)t->velocity, (double)t->temperature,
+                      mat.c_str(), path.c_str(), nr, nz, (double)h, (double)hz));
   sim.taylor = std::move(t);
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 PetscErrorCode TaylorFinish(Simulation &sim)
 {
-  TaylorScene     &t   = *sim.taylor;
-  const PetscInt   dim = sim.mpm.grid.dim;
-  PetscInt         n, rod = -1;
-  const PetscReal *x, *hw, *F, *T, *eps = nullptr;
-  const PetscInt  *material;
-  constexpr int    NV = 6; // r, z, half-size along r, along z, plastic strain, T
+  TaylorScene           &t   = *sim.taylor;
+  const PetscInt         dim = sim.mpm.grid.dim;
+  PetscInt               n, rod = -1;
+  const PetscReal       *x, *hw, *F, *T, *eps = nullptr;
+  const PetscInt        *material;
+  constexpr int          NV = 6; // r, z, half-size along r, along z, plastic strain, T
   std::vector<PetscReal> local;
   PetscFunctionBeginUser;
   for (size_t m = 0; m < sim.mpm.materials.size(); ++m)
@@ -267,7 +269,7 @@ PetscErrorCode TaylorFinish(Simulation &sim)
   }
   PetscCall(fields.RestoreAll());
   // Gather to rank 0
-  PetscMPIInt count = (PetscMPIInt)local.size();
+  PetscMPIInt              count = (PetscMPIInt)local.size();
   std::vector<PetscMPIInt> counts(sim.size), displs(sim.size);
   PetscCallMPI(MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, sim.comm));
   std::vector<PetscReal> all;
@@ -298,19 +300,19 @@ PetscErrorCode TaylorFinish(Simulation &sim)
     t.max_plastic_strain = 0;
     t.max_temperature    = 0;
     for (size_t p = 0; p < np; ++p) {
-      const PetscReal *q = &all[NV * p];
-      zmin = PetscMin(zmin, q[1]);
-      zmax = PetscMax(zmax, q[1]);
-      smin = PetscMin(smin, q[1] - q[3]);
-      smax = PetscMax(smax, q[1] + q[3]);
+      const PetscReal *q   = &all[NV * p];
+      zmin                 = PetscMin(zmin, q[1]);
+      zmax                 = PetscMax(zmax, q[1]);
+      smin                 = PetscMin(smin, q[1] - q[3]);
+      smax                 = PetscMax(smax, q[1] + q[3]);
       t.max_plastic_strain = PetscMax(t.max_plastic_strain, q[4]);
       t.max_temperature    = PetscMax(t.max_temperature, q[5]);
     }
-    t.Lf[0] = zmax - zmin;
-    t.Lf[1] = smax - smin;
+    t.Lf[0]             = zmax - zmin;
+    t.Lf[1]             = smax - smin;
     const PetscReal z02 = zmin + 0.2 * t.length;
     t.Df[0] = t.Df[1] = t.D02[0] = t.D02[1] = 0;
-    const PetscInt nbins = (PetscInt)std::floor((zmax - zmin) / spacing) + 1;
+    const PetscInt         nbins            = (PetscInt)std::floor((zmax - zmin) / spacing) + 1;
     std::vector<PetscReal> rc(nbins, 0), rs(nbins, 0), eb(nbins, 0);
     for (size_t p = 0; p < np; ++p) {
       const PetscReal *q = &all[NV * p];
@@ -347,7 +349,9 @@ PetscErrorCode TaylorFinish(Simulation &sim)
       }
       PetscCheck(out.good(), PETSC_COMM_SELF, PETSC_ERR_FILE_WRITE, "Could not write %s/taylor_particles.csv", sim.output.dir.c_str());
     }
-    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Taylor: t = %g s, Lf %.4f mm (centres) %.4f mm (surface), Lf/L0 %.4f-%.4f; Df %.4f-%.4f mm, Df/D0 %.4f-%.4f; D(0.2 L0) %.4f-%.4f mm; max plastic strain %.3f, max T %.1f K\n", (double)sim.time, 1e3 * (double)t.Lf[0], 1e3 * (double)t.Lf[1], (double)(t.Lf[0] / t.length), (double)(t.Lf[1] / t.length), 1e3 * (double)t.Df[0], 1e3 * (double)t.Df[1], (double)(t.Df[0] / t.diameter), (double)(t.Df[1] / t.diameter), 1e3 * (double)t.D02[0], 1e3 * (double)t.D02[1], (double)t.max_plastic_strain, (double)t.max_temperature));
+    PetscCall(PetscPrintf(PETSC_COMM_SELF, "Taylor: t = %g s, Lf %.4f mm (centres) %.4f mm (surface), Lf/L0 %.4f-%.4f; Df %.4f-%.4f mm, Df/D0 %.4f-%.4f; D(0.2 L0) %.4f-%.4f mm; max plastic strain %.3f, max T %.1f K\n", (double)sim.time,
+                          1e3 * (double)t.Lf[0], 1e3 * (double)t.Lf[1], (double)(t.Lf[0] / t.length), (double)(t.Lf[1] / t.length), 1e3 * (double)t.Df[0], 1e3 * (double)t.Df[1], (double)(t.Df[0] / t.diameter), (double)(t.Df[1] / t.diameter),
+                          1e3 * (double)t.D02[0], 1e3 * (double)t.D02[1], (double)t.max_plastic_strain, (double)t.max_temperature));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

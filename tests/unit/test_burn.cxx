@@ -85,9 +85,9 @@ BurnInput BurningCell()
   in.T_s           = 300;
   in.T_g           = 600;
   in.rho_s         = 1840;
-  in.area          = 1e-6;   // 1 mm^2
-  in.dt            = 1e-6;   // 1 us
-  in.M_s           = 1e-6;   // kg (a 1 mm cell full of PBX holds 1.84e-6 kg)
+  in.area          = 1e-6; // 1 mm^2
+  in.dt            = 1e-6; // 1 us
+  in.M_s           = 1e-6; // kg (a 1 mm cell full of PBX holds 1.84e-6 kg)
   in.M_tiny        = 1e-15;
   in.mass_contrast = 0.5;
   in.T_hot         = 600;
@@ -134,8 +134,8 @@ TEST(burn, SurfaceAreaDiagonal2D)
 
 TEST(burn, DefaultIsNone)
 {
-  auto      m   = Create("pbx");
-  BurnInput in  = BurningCell();
+  auto       m  = Create("pbx");
+  BurnInput  in = BurningCell();
   BurnOutput out;
   EXPECT_EQ(m->name_, "none");
   EXPECT_FALSE(m->Ignites(in));
@@ -158,10 +158,7 @@ TEST(burn, UnknownTypeIsAnError)
 TEST(burn, OutOfRangeIsAnError)
 {
   const char *cases[][3] = {
-    {"simple_burn", "-bad_burn_simple_A", "-1"},
-    {"simple_burn", "-bad_burn_simple_surface_contrast", "1"},
-    {"steady_burn", "-bad_burn_steady_C_p", "0"},
-    {"steady_burn", "-bad_burn_steady_T0_max", "100"}, // below T0_min (200 K)
+    {"simple_burn", "-bad_burn_simple_A", "-1"}, {"simple_burn", "-bad_burn_simple_surface_contrast", "1"}, {"steady_burn", "-bad_burn_steady_C_p", "0"}, {"steady_burn", "-bad_burn_steady_T0_max", "100"}, // below T0_min (200 K)
   };
   for (const auto &c : cases) {
     ScopedOptions o;
@@ -209,8 +206,8 @@ TEST(burn, SimpleBurnThresholds)
 {
   ScopedOptions o;
   o.Set("-pbx_burn_type", "simple_burn");
-  auto       m = Create("pbx");
-  BurnOutput out;
+  auto            m = Create("pbx");
+  BurnOutput      out;
   const BurnInput base = BurningCell();
   EXPECT_TRUE(m->Ignites(base));
   struct Case {
@@ -292,10 +289,10 @@ TEST(burn, SteadyBurnOracle)
     {100e6, 1027.8, 0.05, 204.2, 0.05, 11.10, 0.005},
   };
   for (const auto &row : table) {
-    BurnInput in = BurningCell();
-    in.p         = row.p;
-    in.T_s       = 300;
-    in.rho_s     = 1840;
+    BurnInput in   = BurningCell();
+    in.p           = row.p;
+    in.T_s         = 300;
+    in.rho_s       = 1840;
     PetscReal mdot = 0, Ts = 0;
     ASSERT_EQ(m->MassFlux(in, &mdot, &Ts), 0);
     const std::string at = "steady_burn p " + std::to_string(row.p / 1e6) + " MPa";
@@ -324,11 +321,11 @@ TEST(burn, SteadyBurnHighPressure)
 {
   ScopedOptions o;
   o.Set("-pbx_burn_type", "steady_burn");
-  auto      m  = Create("pbx");
-  BurnInput in = BurningCell();
-  in.p         = 1.39121e9;
-  in.T_s       = 600;
-  in.rho_s     = 3931.99;
+  auto      m    = Create("pbx");
+  BurnInput in   = BurningCell();
+  in.p           = 1.39121e9;
+  in.T_s         = 600;
+  in.rho_s       = 3931.99;
   PetscReal mdot = 0, Ts = 0;
   ASSERT_EQ(m->MassFlux(in, &mdot, &Ts), 0);
   EXPECT_GT(Ts, 550 + 4.0e5 / 1400);
@@ -348,11 +345,8 @@ TEST(burn, SteadyBurnIgnitionAndClamp)
     void (*set)(BurnInput &);
     bool burns;
   } cases[] = {
-    {"T_hot = T_ign = 550 K", [](BurnInput &i) { i.T_hot = 550; }, false},
-    {"p = 4.9e4 Pa < p_th", [](BurnInput &i) { i.p = 4.9e4; }, false},
-    {"p = p_th = 5e4 Pa", [](BurnInput &i) { i.p = 5e4; }, true},
-    {"M_min/M_max = 0.7", [](BurnInput &i) { i.mass_contrast = 0.3; }, false},
-    {"no particle in the cell", [](BurnInput &i) { i.n_particles = 0; }, false},
+    {"T_hot = T_ign = 550 K", [](BurnInput &i) { i.T_hot = 550; }, false},     {"p = 4.9e4 Pa < p_th", [](BurnInput &i) { i.p = 4.9e4; }, false},           {"p = p_th = 5e4 Pa", [](BurnInput &i) { i.p = 5e4; }, true},
+    {"M_min/M_max = 0.7", [](BurnInput &i) { i.mass_contrast = 0.3; }, false}, {"no particle in the cell", [](BurnInput &i) { i.n_particles = 0; }, false},
   };
   BurnOutput out;
   for (const Case &c : cases) {
@@ -364,7 +358,7 @@ TEST(burn, SteadyBurnIgnitionAndClamp)
   }
   // T0 above T0_max = 550 K burns at the 550 K rate (at 1 MPa: T_s 838.45 K, mdot 32.6 kg/(m^2 s))
   BurnInput hot = base, at550 = base;
-  hot.T_s = 650;
+  hot.T_s   = 650;
   at550.T_s = 550;
   PetscReal m_hot, T_hot, m_550, T_550;
   EXPECT_EQ(m->MassFlux(hot, &m_hot, &T_hot), 0);
@@ -427,14 +421,14 @@ TEST(burn, ThermalDecompositionAsymptotic)
 {
   ThermalDecomposition td;
   for (double T0 : {450.0, 500.0, 550.0}) {
-    const ThermalDecompositionParameters &p = td.par;
-    PetscReal t = 0;
-    PetscBool ignited = PETSC_FALSE;
+    const ThermalDecompositionParameters &p       = td.par;
+    PetscReal                             t       = 0;
+    PetscBool                             ignited = PETSC_FALSE;
     ASSERT_EQ(td.IgnitionDelay(T0, 0, 1e6, &t, &ignited), 0);
     ASSERT_TRUE(ignited);
-    const double t_ad = td.AdiabaticInductionTime(T0);
-    const double eps = T0 / p.T_a, B = p.Q * p.T_a / (p.c * T0 * T0);
-    const double d1 = 2 * eps + 1 / B, d2 = 6 * eps * eps + 6 * eps / B + 2 / (B * B);
+    const double      t_ad = td.AdiabaticInductionTime(T0);
+    const double      eps = T0 / p.T_a, B = p.Q * p.T_a / (p.c * T0 * T0);
+    const double      d1 = 2 * eps + 1 / B, d2 = 6 * eps * eps + 6 * eps / B + 2 / (B * B);
     const std::string at = "T0 " + std::to_string((int)T0) + " K";
     std::printf("[ measured ] %s: t %.10g s, t_ad %.10g s, t/t_ad - 1 = %.6f, d1 = 2 eps + 1/B = %.6f, d2 = %.6f, CVODE steps %ld\n", at.c_str(), (double)t, t_ad, t / t_ad - 1, d1, d2, td.last_steps());
     ExpectAbs(at + " t/t_ad - 1 (first order)", t / t_ad - 1, 0, d1 + 2 * d2, "|t/t_ad - 1| <= d1 + 2 d2");
@@ -492,8 +486,8 @@ TEST(burn, ThermalDecompositionVsRK4)
   // rate threshold 1e6 K/s reached at T* the two criteria differ by ~ T*^2/(T_a 1e6 K/s) (derived,
   // to O(T*/T_a) = 2.5 %; asserted within 10 %).
   ASSERT_EQ(td.IgnitionDelay(500, 0, 1e6, &t1, &ig), 0); // T0 + 500 K criterion
-  td.par.runaway_rate = 1e6;                               // K/s
-  PetscReal T_star = 0;
+  td.par.runaway_rate = 1e6;                             // K/s
+  PetscReal T_star    = 0;
   ASSERT_EQ(td.IgnitionDelay(500, 0, 1e6, &t2, &ig, &T_star), 0);
   td.par.runaway_rate = 0;
   EXPECT_TRUE(ig);
@@ -509,11 +503,12 @@ TEST(burn, ThermalDecompositionVsRK4)
 TEST(burn, ThermalDecompositionAdvance)
 {
   ThermalDecomposition td;
-  td.par.h     = 9.96;
-  td.par.T_env = 460;
+  td.par.h         = 9.96;
+  td.par.T_env     = 460;
   PetscReal lambda = 0, T = 460;
   ASSERT_EQ(td.Advance(200, &lambda, &T), 0);
   const ThermalDecompositionParameters &p = td.par;
+
   auto f = [&](double l, double TT, double *dl, double *dT) {
     const double r = p.Z * (1 - l) * std::exp(-p.T_a / TT);
     *dl            = r;
@@ -550,7 +545,7 @@ TEST(burn, ThermalDecompositionOptions)
   ScopedOptions bad;
   bad.Set("-bad_decomposition_rtol", "0.1");
   ThermalDecomposition tb;
-  std::string msg;
+  std::string          msg;
   PetscPushErrorHandler(CaptureHandler, &msg);
   const PetscErrorCode rc = tb.SetFromOptions(PETSC_COMM_WORLD, "bad");
   PetscPopErrorHandler();

@@ -84,9 +84,10 @@ double D5(F f, double x, double h)
 // Temperature on the isentrope through (rho0, T0) at rho: RK4 on dT/drho = T (dP/dT)_rho/(c_v rho^2).
 double IsentropeT(const GasEOS &eos, double rho0, double T0, double rho)
 {
-  const int n = 64;
+  const int    n = 64;
   const double h = (rho - rho0) / n;
-  auto f = [&](double r, double T) { return T * eos.Evaluate(r, T).dp_dT / (eos.cv * r * r); };
+
+  auto   f = [&](double r, double T) { return T * eos.Evaluate(r, T).dp_dT / (eos.cv * r * r); };
   double r = rho0, T = T0;
   for (int i = 0; i < n; ++i) {
     const double k1 = f(r, T), k2 = f(r + h / 2, T + h / 2 * k1), k3 = f(r + h / 2, T + h / 2 * k2), k4 = f(r + h, T + h * k3);
@@ -303,9 +304,8 @@ TEST(gas_eos, UnknownTypeIsAnError)
 TEST(gas_eos, OutOfRangeIsAnError)
 {
   const std::vector<std::vector<std::string>> cases = {
-    {"ideal_gas", "gamma", "1"},        {"ideal_gas", "cv", "0"},          {"stiffened_gas", "p_inf", "-1"},
-    {"jwl", "jwl_omega", "0"},          {"jwl", "jwl_A", "-1e9"},          {"murnaghan", "murnaghan_K", "-1"},
-    {"murnaghan", "murnaghan_T0", "0"}, {"murnaghan", "murnaghan_n", "0"},
+    {"ideal_gas", "gamma", "1"}, {"ideal_gas", "cv", "0"},           {"stiffened_gas", "p_inf", "-1"},   {"jwl", "jwl_omega", "0"},
+    {"jwl", "jwl_A", "-1e9"},    {"murnaghan", "murnaghan_K", "-1"}, {"murnaghan", "murnaghan_T0", "0"}, {"murnaghan", "murnaghan_n", "0"},
   };
   for (const auto &c : cases) {
     ScopedOptions o;
@@ -350,12 +350,19 @@ TEST(gas_eos, ColdEnergy)
     const char   *name;
     double        rho, T, h;
   };
-  const Case cases[] = {{water.get(), "water", 1200, 350, 1e-5}, {water.get(), "water", 900, 1000, 1e-5}, {products.get(), "jwl", 1832, 3000, 1e-5}, {products.get(), "jwl", 300, 2000, 1e-5}, {products.get(), "jwl", 3000, 500, 1e-5},
-                        {reactant.get(), "murnaghan", 1.05 * 1840, 300, 1e-6}, {reactant.get(), "murnaghan", 0.99999 * 1840, 300, 1e-9}};
+  // clang-format off (a table laid out by hand)
+  const Case cases[] = {{water.get(), "water", 1200, 350, 1e-5},
+                        {water.get(), "water", 900, 1000, 1e-5},
+                        {products.get(), "jwl", 1832, 3000, 1e-5},
+                        {products.get(), "jwl", 300, 2000, 1e-5},
+                        {products.get(), "jwl", 3000, 500, 1e-5},
+                        {reactant.get(), "murnaghan", 1.05 * 1840, 300, 1e-6},
+                        {reactant.get(), "murnaghan", 0.99999 * 1840, 300, 1e-9}};
+  // clang-format on
   for (const Case &c : cases) {
-    const double     dr = c.h * c.rho;
-    const double     fd = (c.eos->ColdEnergy(c.rho + dr) - c.eos->ColdEnergy(c.rho - dr)) / (2 * dr);
-    const GasEOSPoint s = c.eos->Evaluate(c.rho, c.T);
+    const double      dr = c.h * c.rho;
+    const double      fd = (c.eos->ColdEnergy(c.rho + dr) - c.eos->ColdEnergy(c.rho - dr)) / (2 * dr);
+    const GasEOSPoint s  = c.eos->Evaluate(c.rho, c.T);
     ExpectRel(std::string(c.name) + " de_cold/drho at rho " + std::to_string(c.rho), fd, (s.pressure - c.T * s.dp_dT) / (c.rho * c.rho), 1e-6, "(P - T dP/dT)/rho^2");
   }
 }

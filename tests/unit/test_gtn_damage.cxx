@@ -41,12 +41,11 @@ void Report(const std::string &what, double measured, double tol, const char *so
   std::fflush(stdout);
 }
 
-
 // ---- flow models for the direct tests ----------------------------------------------------------
 // sigma_f = sigma0 + H eps_p (rate and temperature independent).
 class TestLinearFlow final : public FlowStressModel<TestLinearFlow> {
 public:
-  PetscReal sigma0 = 500e6, H = 0;
+  PetscReal   sigma0 = 500e6, H = 0;
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
     y.sigma         = sigma0 + H * x.plastic_strain;
@@ -62,17 +61,17 @@ public:
 // accumulates the plastic strain increments (checks that the return calls UpdateHistory with de).
 class TestRateFlow final : public FlowStressModel<TestRateFlow> {
 public:
-  PetscReal A = 400e6, B = 300e6, n = 0.3, C = 0.02;
+  PetscReal   A = 400e6, B = 300e6, n = 0.3, C = 0.02;
   inline void Evaluate(const FlowPoint &x, FlowValue &y) const
   {
     const PetscReal e = x.plastic_strain > 0 ? x.plastic_strain : 0, pw = e > 0 ? std::pow(e, n) : 0;
     PetscReal       slope;
     const PetscReal effective = SmoothRateFloor(x.plastic_strain_rate, min_rate, &slope);
-    const PetscReal rate = 1 + C * std::log(effective);
-    y.sigma              = (A + B * pw) * rate;
-    y.d_strain           = e > 0 ? B * n * pw / e * rate : 0;
-    y.d_rate             = (A + B * pw) * C / effective * slope;
-    y.d_temperature      = 0;
+    const PetscReal rate      = 1 + C * std::log(effective);
+    y.sigma                   = (A + B * pw) * rate;
+    y.d_strain                = e > 0 ? B * n * pw / e * rate : 0;
+    y.d_rate                  = (A + B * pw) * C / effective * slope;
+    y.d_temperature           = 0;
   }
   inline void    UpdateHistory(const FlowPoint &, PetscReal de, PetscReal *h) const { h[0] += de; }
   int            NumHistory() const override { return 1; }
@@ -174,13 +173,13 @@ std::unique_ptr<FlowStress> JohnsonCook4340(ScopedOptions &opt, const std::strin
 // run with tolerance 1e-14, so the difference is the round-off of two Newton paths to one root.
 TEST(GTNReturn, ZeroPorosityIsRadialReturn)
 {
-  auto       cg = std::make_unique<Chunk>(), cv = std::make_unique<Chunk>();
+  auto          cg = std::make_unique<Chunk>(), cv = std::make_unique<Chunk>();
   GTNParameters gtn;
-  const M3   dirs[] = {Deviatoric(1, 0, 0, 0, 0, 0), Deviatoric(0.3, -0.7, 0.1, 0.4, -0.2, 0.25), Deviatoric(0, 0, 0, 1, 0, 0)};
-  const double mags[] = {1.05, 1.5, 4.0, 20.0}; // q_tr / sigma_0
-  const double press[] = {0.0, -2e9, 3e9};
-  double       worst_s = 0, worst_eps = 0, worst_p = 0, worst_tr = 0;
-  int          plastic = 0;
+  const M3      dirs[]  = {Deviatoric(1, 0, 0, 0, 0, 0), Deviatoric(0.3, -0.7, 0.1, 0.4, -0.2, 0.25), Deviatoric(0, 0, 0, 1, 0, 0)};
+  const double  mags[]  = {1.05, 1.5, 4.0, 20.0}; // q_tr / sigma_0
+  const double  press[] = {0.0, -2e9, 3e9};
+  double        worst_s = 0, worst_eps = 0, worst_p = 0, worst_tr = 0;
+  int           plastic = 0;
   for (int model = 0; model < 2; ++model) {
     for (auto *c : {cg.get(), cv.get()}) {
       c->n  = 0;
@@ -218,9 +217,7 @@ TEST(GTNReturn, ZeroPorosityIsRadialReturn)
       EXPECT_NEAR(cg->flow_stress[k], cv->flow_stress[k], 1e-12 * cv->flow_stress[k]);
       EXPECT_NEAR(cg->hardening[k], cv->hardening[k], 1e-9 * std::fabs(cv->hardening[k]) + 1e-6);
       EXPECT_NEAR(cg->equivalent_stress[k], cv->equivalent_stress[k], 1e-12 * cv->equivalent_stress[k]);
-      if (model == 1) {
-        EXPECT_NEAR(cg->history[k][0], cg->delta_plastic_strain[k], 1e-15) << "UpdateHistory received de";
-      }
+      if (model == 1) { EXPECT_NEAR(cg->history[k][0], cg->delta_plastic_strain[k], 1e-15) << "UpdateHistory received de"; }
     }
   }
   EXPECT_GE(plastic, 2 * 36 - 9); // the linear model at 1.05 sigma_0 with eps_0 = 0.02 is elastic
@@ -245,16 +242,16 @@ TEST(GTNReturn, MixedStateOnSurfaceWithNormality)
   for (const bool growth : {true, false}) {
     GTNParameters gtn;
     gtn.growth = growth; // false: f fixed at f_n in the return (the explosive-growth fallback)
-    GTNRef        ref;
-    auto          c = std::make_unique<Chunk>();
+    GTNRef ref;
+    auto   c = std::make_unique<Chunk>();
     struct Case {
       double f, qa, sa; // porosity, q_tr / sigma0, sigma_m,tr / sigma0
     };
-    const Case cases[] = {{0.02, 1.2, 0.8}, {0.02, 0.5, 2.5}, {0.005, 2.0, -3.0}, {0.08, 1.0, 1.0}, {0.12, 3.0, 0.2}, {0.03, 0.2, -6.0}, {0.001, 5.0, 5.0}};
+    const Case     cases[] = {{0.02, 1.2, 0.8}, {0.02, 0.5, 2.5}, {0.005, 2.0, -3.0}, {0.08, 1.0, 1.0}, {0.12, 3.0, 0.2}, {0.03, 0.2, -6.0}, {0.001, 5.0, 5.0}};
     TestLinearFlow flow;
-    flow.H = 1e9;
-    c->n   = 0;
-    c->dt  = 1e-6;
+    flow.H       = 1e9;
+    c->n         = 0;
+    c->dt        = 1e-6;
     const M3 dir = Deviatoric(0.3, -0.7, 0.1, 0.4, -0.2, 0.25);
     for (const Case &cs : cases) {
       SetPoint(*c, c->n, dir * (cs.qa * flow.sigma0 / Equivalent(dir.data())), -cs.sa * flow.sigma0, kK, kMu, cs.f, 0.05);
@@ -274,7 +271,7 @@ TEST(GTNReturn, MixedStateOnSurfaceWithNormality)
       const double sf = flow.sigma0 + flow.H * c->plastic_strain[k];
       worst_sf        = std::max(worst_sf, std::fabs(sf - c->flow_stress[k]) / sf);
       EXPECT_NEAR(sm, sm_tr - kK * dv, 1e-12 * std::fabs(sm_tr)) << "sigma_m = sigma_m,tr - K dv";
-      worst_phi = std::max(worst_phi, std::fabs(ref.Phi(sm, q, sf, f1)));
+      worst_phi      = std::max(worst_phi, std::fabs(ref.Phi(sm, q, sf, f1)));
       const double a = dv * ref.dPhi_dq(q, sf), b = dq * ref.dPhi_dsm(sm, sf, f1);
       worst_norm     = std::max(worst_norm, std::fabs(a - b) / (std::fabs(a) + std::fabs(b)));
       const double w = sm * dv + q * dq;
@@ -307,10 +304,10 @@ TEST(GTNReturn, HydrostaticTrialState)
   GTNParameters  gtn;
   GTNRef         ref;
   TestLinearFlow flow; // perfectly plastic, 500 MPa
-  auto           c = std::make_unique<Chunk>();
+  auto           c    = std::make_unique<Chunk>();
   const double   fs[] = {0.01, 0.04, 0.07, 0.15}, sms[] = {3.0, 5.0, -4.0, -8.0};
-  c->n                = 0;
-  c->dt               = 1e-6;
+  c->n  = 0;
+  c->dt = 1e-6;
   for (double f : fs)
     for (double sm : sms) {
       SetPoint(*c, c->n, M3::Zero(), -sm * flow.sigma0, kK, kMu, f, 0.0);
@@ -356,12 +353,13 @@ TEST(GTNReturn, RandomStatesJohnsonCook)
   settings.yield          = YieldType::GTN;
   settings.tolerance      = 1e-10;
   settings.max_iterations = 50;
-  GTNRef        ref;
-  std::mt19937_64 rng(12345);
+  GTNRef ref;
+
+  std::mt19937_64                        rng(12345);
   std::uniform_real_distribution<double> U(0, 1);
-  auto          c = std::make_unique<Chunk>();
-  double        worst_phi = 0, worst_norm = 0, max_dv = 0;
-  int           plastic = 0, total = 0, failures = 0, explicit_fallbacks = 0;
+  auto                                   c         = std::make_unique<Chunk>();
+  double                                 worst_phi = 0, worst_norm = 0, max_dv = 0;
+  int                                    plastic = 0, total = 0, failures = 0, explicit_fallbacks = 0;
   for (int batch = 0; batch < 4000 / kChunk; ++batch) {
     c->n  = kChunk;
     c->dt = 1e-7;
@@ -369,12 +367,12 @@ TEST(GTNReturn, RandomStatesJohnsonCook)
     M3     s_tr[kChunk];
     double sm_tr[kChunk];
     for (int k = 0; k < kChunk; ++k) {
-      const double u = U(rng);
-      f0[k]          = u < 0.1 ? 0.0 : (u < 0.15 ? 1e-9 : 0.25 * U(rng));
-      M3 d           = Deviatoric(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
+      const double u  = U(rng);
+      f0[k]           = u < 0.1 ? 0.0 : (u < 0.15 ? 1e-9 : 0.25 * U(rng));
+      M3           d  = Deviatoric(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
       const double qa = U(rng) < 0.05 ? 0.0 : 12 * U(rng), sa = 24 * (U(rng) - 0.5);
-      s_tr[k]         = qa > 0 ? M3(d * (qa * 792e6 / Equivalent(d.data()))) : M3(M3::Zero());
-      sm_tr[k]        = sa * 792e6;
+      s_tr[k]  = qa > 0 ? M3(d * (qa * 792e6 / Equivalent(d.data()))) : M3(M3::Zero());
+      sm_tr[k] = sa * 792e6;
       SetPoint(*c, k, s_tr[k], -sm_tr[k], kK, kMu, f0[k], 0.1 * U(rng), 600, 1793);
     }
     const PetscErrorCode ierr = flow->Return(*c, settings);
@@ -425,15 +423,16 @@ TEST(VonMisesReturn, PairedLanesMatchOnePointAtATime)
   auto          flow = JohnsonCook4340(opt, "vmlanes");
   ASSERT_TRUE(flow);
   ReturnSettings settings; // von Mises, tolerance 1e-10
-  std::mt19937_64 rng(2026);
+
+  std::mt19937_64                        rng(2026);
   std::uniform_real_distribution<double> U(0, 1);
-  auto c = std::make_unique<Chunk>(), one = std::make_unique<Chunk>();
-  int  plastic = 0, compared = 0, mismatches = 0;
+  auto                                   c = std::make_unique<Chunk>(), one = std::make_unique<Chunk>();
+  int                                    plastic = 0, compared = 0, mismatches = 0;
   for (int batch = 0; batch < 16; ++batch) {
     c->n  = kChunk;
     c->dt = 1e-7;
     for (int k = 0; k < kChunk; ++k) {
-      M3 d = Deviatoric(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
+      M3           d  = Deviatoric(U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5, U(rng) - 0.5);
       const double qa = 6 * U(rng), eps0 = U(rng) < 0.2 ? 0.0 : 0.5 * U(rng);
       SetPoint(*c, k, M3(d * (qa * 792e6 / Equivalent(d.data()))), 0.0, kK, kMu, 0.0, eps0, 298 + 900 * U(rng), 1793);
       c->plastic_strain_rate[k] = U(rng) < 0.5 ? 0.0 : 1e5 * U(rng); // the warm start's previous rate
@@ -441,15 +440,15 @@ TEST(VonMisesReturn, PairedLanesMatchOnePointAtATime)
     auto input = std::make_unique<Chunk>(*c);
     ASSERT_EQ(flow->Return(*c, settings), 0);
     for (int k = 0; k < kChunk; ++k) {
-      *one    = *input;
-      one->n  = 1;
+      *one   = *input;
+      one->n = 1;
       for (int a = 0; a < 9; ++a) one->deviator[0][a] = input->deviator[k][a];
       one->index[0] = k, one->shear_modulus[0] = input->shear_modulus[k], one->plastic_strain[0] = input->plastic_strain[k];
       one->plastic_strain_rate[0] = input->plastic_strain_rate[k], one->temperature[0] = input->temperature[k], one->melt_temperature[0] = input->melt_temperature[k];
       ASSERT_EQ(flow->Return(*one, settings), 0);
-      bool same = one->plastic[0] == c->plastic[k] && one->plastic_strain[0] == c->plastic_strain[k] && one->plastic_strain_rate[0] == c->plastic_strain_rate[k] &&
-                  one->delta_plastic_strain[0] == c->delta_plastic_strain[k] && one->flow_stress[0] == c->flow_stress[k] && one->hardening[0] == c->hardening[k] &&
-                  one->rate_hardening[0] == c->rate_hardening[k] && one->thermal_softening[0] == c->thermal_softening[k] && one->equivalent_stress[0] == c->equivalent_stress[k];
+      bool same = one->plastic[0] == c->plastic[k] && one->plastic_strain[0] == c->plastic_strain[k] && one->plastic_strain_rate[0] == c->plastic_strain_rate[k] && one->delta_plastic_strain[0] == c->delta_plastic_strain[k] &&
+                  one->flow_stress[0] == c->flow_stress[k] && one->hardening[0] == c->hardening[k] && one->rate_hardening[0] == c->rate_hardening[k] && one->thermal_softening[0] == c->thermal_softening[k] &&
+                  one->equivalent_stress[0] == c->equivalent_stress[k];
       for (int a = 0; a < 9; ++a) same = same && one->deviator[0][a] == c->deviator[k][a];
       mismatches += !same;
       plastic += c->plastic[k];
@@ -548,11 +547,29 @@ constexpr double kSy = 500e6, kF0 = 0.01, kRate = 1e3;
 
 Material *CreateDilatationMaterial(ScopedOptions &opt, const std::string &mat, const std::vector<std::pair<std::string, std::string>> &extra)
 {
-  const std::vector<std::pair<std::string, std::string>> base = {{"model", "elastic_plastic"}, {"density", "7830"}, {"shear_modulus", "80e9"}, {"bulk_modulus", "170e9"},
-    {"room_temperature", "298"}, {"adiabatic", "false"}, {"eos_type", "hypoelastic"}, {"melt_type", "constant"}, {"melt_Tm", "1800"}, {"shear_modulus_type", "constant"},
-    {"specific_heat_type", "constant"}, {"specific_heat_Cp", "477"}, {"flow_stress_type", "linear_hardening"}, {"flow_stress_yield_stress", "500e6"},
-    {"flow_stress_hardening_modulus", "0"}, {"yield_type", "gtn"}, {"porosity_growth", "true"}, {"porosity_nucleation", "false"}, {"porosity_initial_mean", "0.01"},
-    {"porosity_initial_deviation", "0"}, {"return_tolerance", "1e-12"}};
+  // clang-format off (a table laid out by hand)
+  const std::vector<std::pair<std::string, std::string>> base = {{"model", "elastic_plastic"},
+                                                                 {"density", "7830"},
+                                                                 {"shear_modulus", "80e9"},
+                                                                 {"bulk_modulus", "170e9"},
+                                                                 {"room_temperature", "298"},
+                                                                 {"adiabatic", "false"},
+                                                                 {"eos_type", "hypoelastic"},
+                                                                 {"melt_type", "constant"},
+                                                                 {"melt_Tm", "1800"},
+                                                                 {"shear_modulus_type", "constant"},
+                                                                 {"specific_heat_type", "constant"},
+                                                                 {"specific_heat_Cp", "477"},
+                                                                 {"flow_stress_type", "linear_hardening"},
+                                                                 {"flow_stress_yield_stress", "500e6"},
+                                                                 {"flow_stress_hardening_modulus", "0"},
+                                                                 {"yield_type", "gtn"},
+                                                                 {"porosity_growth", "true"},
+                                                                 {"porosity_nucleation", "false"},
+                                                                 {"porosity_initial_mean", "0.01"},
+                                                                 {"porosity_initial_deviation", "0"},
+                                                                 {"return_tolerance", "1e-12"}};
+  // clang-format on
   for (auto &kv : base) opt.Set("-" + mat + "_" + kv.first, kv.second);
   for (auto &kv : extra) opt.Set("-" + mat + "_" + kv.first, kv.second);
   Material *m = nullptr;
@@ -569,7 +586,8 @@ Material *CreateDilatationMaterial(ScopedOptions &opt, const std::string &mat, c
 struct DilatationODE {
   GTNRef ref;
   double K = kK, sy = kSy, r = kRate, f0 = kF0;
-  double YieldTime() const { return ref.HydrostaticMean(sy, f0, 1) / (3 * K * r); }
+
+  double                YieldTime() const { return ref.HydrostaticMean(sy, f0, 1) / (3 * K * r); }
   std::array<double, 2> Rhs(const std::array<double, 2> &y) const
   {
     const double f = y[0], S = ref.HydrostaticMean(sy, f, 1), Sp = ref.HydrostaticSlope(sy, f);
@@ -580,9 +598,9 @@ struct DilatationODE {
   std::vector<std::array<double, 3>> Solve(const std::vector<double> &times, int substeps) const
   {
     std::vector<std::array<double, 3>> out;
-    const double ty = YieldTime();
-    std::array<double, 2> y{f0, 0.0};
-    double t = ty;
+    const double                       ty = YieldTime();
+    std::array<double, 2>              y{f0, 0.0};
+    double                             t = ty;
     for (double T : times) {
       if (T <= ty) {
         out.push_back({f0, 0.0, 3 * K * r * T});
@@ -608,7 +626,8 @@ struct DilatationODE {
 // with Phi(sigma_m,tr - K dv, f_n + (1 - f_n) dv) = 0; eps_M += sigma_m dv / ((1 - f_{n+1}) sigma_y).
 struct DiscreteStep {
   GTNRef ref;
-  void   operator()(double &sm, double &f, double &eps, double dt) const
+
+  void operator()(double &sm, double &f, double &eps, double dt) const
   {
     const double sm_tr = sm + 3 * kK * kRate * dt;
     if (ref.Phi(sm_tr, 0, kSy, f) <= 0) {
@@ -622,7 +641,7 @@ struct DiscreteStep {
       else hi = mid;
     }
     const double dv = 0.5 * (lo + hi), f1 = f + (1 - f) * dv;
-    sm              = sm_tr - kK * dv;
+    sm = sm_tr - kK * dv;
     eps += sm * dv / ((1 - f1) * kSy);
     f = f1;
   }
@@ -661,8 +680,8 @@ PetscErrorCode RunDilatation(PointRun &run, int steps, double final_strain, Hist
 //      eq. 16: first order), error(400)/error(800) ~ 2.
 TEST(GTNMaterial, HydrostaticTensionPorosityGrowth)
 {
-  const double final_strain = 0.05;
-  double       err[2][3]    = {{0, 0, 0}, {0, 0, 0}};
+  const double final_strain   = 0.05;
+  double       err[2][3]      = {{0, 0, 0}, {0, 0, 0}};
   double       worst_discrete = 0, f_end = 0;
   const int    resolutions[2] = {400, 800};
   for (int level = 0; level < 2; ++level) {
@@ -716,7 +735,9 @@ TEST(GTNMaterial, TeplaFailureStrain)
   const double  fcT = 0.15, eps_f = 0.3, final_strain = 0.06;
   const int     steps = 1000;
   PointRun      run;
-  Material     *m = CreateDilatationMaterial(opt, "gtntepla", {{"failure_criteria", "tepla,porosity"}, {"failure_porosity", "0.15"}, {"damage_type", "johnson_cook"}, {"damage_D1", "0.3"}, {"damage_D2", "0"}, {"damage_D3", "-2.12"}, {"damage_D4", "0"}, {"damage_D5", "0"}});
+  Material
+    *m = CreateDilatationMaterial(opt, "gtntepla",
+                                  {{"failure_criteria", "tepla,porosity"}, {"failure_porosity", "0.15"}, {"damage_type", "johnson_cook"}, {"damage_D1", "0.3"}, {"damage_D2", "0"}, {"damage_D3", "-2.12"}, {"damage_D4", "0"}, {"damage_D5", "0"}});
   ASSERT_NE(m, nullptr);
   ASSERT_EQ(run.Setup(m, 298), 0);
   History h;
@@ -732,14 +753,15 @@ TEST(GTNMaterial, TeplaFailureStrain)
   EXPECT_NEAR(run.Real("failure_time"), h.time[flip], 1e-15);
   // independent: bisection on the strain where the RK4 solution reaches the TEPLA surface
   DilatationODE ode;
-  auto          g_of = [&](double strain) {
+
+  auto g_of = [&](double strain) {
     auto s = ode.Solve({strain / kRate}, 2000);
     return std::pow(s[0][0] / fcT, 2) + std::pow(s[0][1] / eps_f, 2) - 1;
   };
   double lo = 0.01, hi = final_strain;
   for (int it = 0; it < 60; ++it) (g_of(0.5 * (lo + hi)) < 0 ? lo : hi) = 0.5 * (lo + hi);
   const double ode_strain = 0.5 * (lo + hi), run_strain = h.strain[flip];
-  auto         at         = ode.Solve({ode_strain / kRate}, 2000);
+  auto         at = ode.Solve({ode_strain / kRate}, 2000);
   std::printf("             flip at step %d, strain %.6f (f %.5f, eps_M %.5f); own history crosses at step %d; ODE strain %.6f (f %.5f, eps_M %.5f)\n", flip + 1, run_strain, h.f[flip], h.eps[flip], own + 1, ode_strain, at[0][0], at[0][1]);
   Report("TEPLA-F: flip step - first step with (f/fc)^2 + (eps/eps_f)^2 >= 1", flip - own, 0, "the run's own history");
   Report("TEPLA-F: |strain at flip - ODE strain| / ODE strain", std::fabs(run_strain - ode_strain) / ode_strain, 5e-3, "RK4 of the rate problem");
@@ -756,9 +778,9 @@ TEST(GTNMaterial, TeplaFailureStrain)
 // regularisations: rate floor, T* clamp, triaxiality clip at 1.5, eps_f floor (Armco iron, D1 < 0).
 TEST(Damage, JohnsonCookAccumulatesEq20)
 {
-  ScopedOptions opt;
-  const std::string mat = "jcdam";
-  const char *kv[][2] = {{"D1", "0.05"}, {"D2", "3.44"}, {"D3", "-2.12"}, {"D4", "0.002"}, {"D5", "0.61"}, {"reference_rate", "1"}}; // 4340, models.md 6.1
+  ScopedOptions     opt;
+  const std::string mat     = "jcdam";
+  const char       *kv[][2] = {{"D1", "0.05"}, {"D2", "3.44"}, {"D3", "-2.12"}, {"D4", "0.002"}, {"D5", "0.61"}, {"reference_rate", "1"}}; // 4340, models.md 6.1
   for (auto &p : kv) opt.Set("-" + mat + "_damage_" + p[0], p[1]);
   opt.Set("-" + mat + "_damage_type", "johnson_cook");
   auto dmg = CreateSubModelFor<DamageModel>(DamageList, mat, "damage", "none");
@@ -769,11 +791,11 @@ TEST(Damage, JohnsonCookAccumulatesEq20)
   };
   // (triaxiality, plastic rate, T, Tm): uniaxial tension 1/3 at 1e3 /s, 600 K; shear; compression;
   // high triaxiality (clipped at 1.5); rate below the floor (1e-3); T below room (T* = 0); above melt (T* = 1)
-  const Case cases[] = {{1.0 / 3, 1e3, 600, 1793}, {0.0, 1.0, 298, 1793}, {-1.0 / 3, 10, 400, 1793}, {2.5, 1e4, 600, 1793}, {1.0 / 3, 0.0, 600, 1793}, {1.0 / 3, 1e3, 200, 1793}, {1.0 / 3, 1e3, 2000, 1793}, {INFINITY, 1e3, 600, 1793}};
+  const Case   cases[] = {{1.0 / 3, 1e3, 600, 1793}, {0.0, 1.0, 298, 1793}, {-1.0 / 3, 10, 400, 1793}, {2.5, 1e4, 600, 1793}, {1.0 / 3, 0.0, 600, 1793}, {1.0 / 3, 1e3, 200, 1793}, {1.0 / 3, 1e3, 2000, 1793}, {INFINITY, 1e3, 600, 1793}};
   const int    nc = sizeof(cases) / sizeof(cases[0]), N = 250;
   const double de = 2e-4, D0 = 0.01;
-  auto         c  = std::make_unique<Chunk>();
-  c->n            = nc;
+  auto         c = std::make_unique<Chunk>();
+  c->n           = nc;
   for (int k = 0; k < nc; ++k) {
     c->triaxiality[k]          = cases[k].triax;
     c->plastic_strain_rate[k]  = cases[k].rate;
@@ -791,7 +813,7 @@ TEST(Damage, JohnsonCookAccumulatesEq20)
   double worst = 0;
   for (int k = 0; k < nc; ++k) {
     const double ef = by_hand(cases[k]), expect = D0 + N * de / ef;
-    worst           = std::max({worst, std::fabs(c->damage[k] - expect) / (expect - D0), std::fabs(c->fracture_strain[k] - ef) / ef});
+    worst = std::max({worst, std::fabs(c->damage[k] - expect) / (expect - D0), std::fabs(c->fracture_strain[k] - ef) / ef});
     std::printf("             sigma* %+.3f rate %.0e T %4.0f: eps_f %.6f (hand %.6f), D %.8f (hand %.8f)\n", cases[k].triax, cases[k].rate, cases[k].T, c->fracture_strain[k], ef, c->damage[k], expect);
   }
   // uniaxial tension at 1e3 /s, 600 K: eps_f = (0.05 + 3.44 e^{-2.12/3})(1 + 0.002 ln 1000)(1 + 0.61 * 302/1495)
@@ -805,8 +827,8 @@ TEST(Damage, JohnsonCookAccumulatesEq20)
   // Armco iron (models.md 6.5: D1 = -2.20, D2 = 5.43, D3 = -0.47): with the 1.5 clip the bracket stays
   // positive (0.48301); with the clip lifted (limit 10) sigma* = 3 makes it negative -> floor 1e-6.
   ScopedOptions     opt2;
-  const std::string mat2 = "jcarmco";
-  const char *kv2[][2] = {{"type", "johnson_cook"}, {"D1", "-2.20"}, {"D2", "5.43"}, {"D3", "-0.47"}, {"D4", "0.016"}, {"D5", "0.63"}, {"triaxiality_limit", "10"}};
+  const std::string mat2     = "jcarmco";
+  const char       *kv2[][2] = {{"type", "johnson_cook"}, {"D1", "-2.20"}, {"D2", "5.43"}, {"D3", "-0.47"}, {"D4", "0.016"}, {"D5", "0.63"}, {"triaxiality_limit", "10"}};
   for (auto &p : kv2) opt2.Set("-" + mat2 + "_damage_" + p[0], p[1]);
   auto armco = CreateSubModelFor<DamageModel>(DamageList, mat2, "damage", "none");
   ASSERT_TRUE(armco);
@@ -834,8 +856,8 @@ TEST(Damage, HancockMacKenzieAccumulatesEq21)
   const double triax[] = {1.0 / 3, 0.0, -1.0 / 3, 1.0, 2.0, -INFINITY, INFINITY};
   const int    nc = 7, N = 400;
   const double de = 1e-4, D0 = 0.005;
-  auto         c  = std::make_unique<Chunk>();
-  c->n            = nc;
+  auto         c = std::make_unique<Chunk>();
+  c->n           = nc;
   for (int k = 0; k < nc; ++k) {
     c->triaxiality[k]          = triax[k];
     c->plastic_strain_rate[k]  = 1e3;
@@ -848,7 +870,7 @@ TEST(Damage, HancockMacKenzieAccumulatesEq21)
   double worst = 0;
   for (int k = 0; k < 5; ++k) {
     const double ef = 1.65 * std::exp(-1.5 * triax[k]), expect = D0 + N * de / ef;
-    worst           = std::max({worst, std::fabs(c->damage[k] - expect) / (expect - D0), std::fabs(c->fracture_strain[k] - ef) / ef});
+    worst = std::max({worst, std::fabs(c->damage[k] - expect) / (expect - D0), std::fabs(c->fracture_strain[k] - ef) / ef});
     std::printf("             sigma_m/sigma_eq %+.3f: eps_f %.6f (hand %.6f), D %.8f (hand %.8f)\n", triax[k], c->fracture_strain[k], ef, c->damage[k], expect);
   }
   Report("HM damage: max relative error of D_N - D_0 and eps_f vs eq. 21 by hand", worst, 1e-12, "eq. 21 per NOTES: 1.65 exp(-1.5 sm/seq)");
@@ -878,12 +900,12 @@ TEST(GTNReturn, FirstYieldTriaxialTension)
   c->dt          = 1.7742713569209196e-06;
   const M3 d     = Deviatoric(1, -0.5, -0.5, 0, 0, 0);
   SetPoint(*c, 0, M3(d * (707597261.99081635 / Equivalent(d.data()))), -448588952.71853018, 98805434767.914093, 80e9, 0.0046926562226440984, 0, 298.93219813692934, 1793);
-  c->density[0] = 7794.8219788783354;
+  c->density[0]             = 7794.8219788783354;
   const PetscErrorCode ierr = flow->Return(*c, settings);
   ASSERT_EQ(ierr, 0);
   GTNRef       ref;
   const double sf = c->flow_stress[0], sm = -c->pressure[0], q = Equivalent(c->deviator[0]);
-  const double f1 = 0.0046926562226440984 + (1 - 0.0046926562226440984) * c->trace_plastic_strain[0];
+  const double f1  = 0.0046926562226440984 + (1 - 0.0046926562226440984) * c->trace_plastic_strain[0];
   const double phi = ref.Phi(sm, q, sf, f1);
   std::printf("[ measured ] first-yield triaxial tension: de %.3e, dv %.3e, sigma_f %.4e Pa, |Phi| %.2e (tolerance 1e-9)\n", c->delta_plastic_strain[0], c->trace_plastic_strain[0], sf, std::fabs(phi));
   EXPECT_EQ(c->plastic[0], 1);

@@ -43,14 +43,11 @@ void ReportCode(const std::string &what, PetscErrorCode measured, PetscErrorCode
   std::fflush(stdout);
 }
 
-
 // Owns the arrays of a few material points and hands them out as MaterialPointFields.
 struct Points {
   explicit Points(PetscInt n) : n(n), material(n, 0), L(9 * n, 0.0), F(9 * n, 0.0), stress(9 * n, 0.0), mass(n, 2e-3), volume(n, 1e-6), temperature(n, 293.0), wave_speed(n, -1.0), energy(n, 0.0)
   {
-    for (PetscInt p = 0; p < n; ++p) {
-      SetF(p, M3::Identity());
-    }
+    for (PetscInt p = 0; p < n; ++p) { SetF(p, M3::Identity()); }
   }
   MaterialPointFields Fields()
   {
@@ -93,10 +90,7 @@ M3 M3of(double a00, double a01, double a02, double a10, double a11, double a12, 
   return m;
 }
 
-M3 Rotation(double angle, Eigen::Vector3d axis)
-{
-  return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
-}
+M3 Rotation(double angle, Eigen::Vector3d axis) { return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix(); }
 
 double MaxAbs(const M3 &m) { return m.cwiseAbs().maxCoeff(); }
 
@@ -136,8 +130,8 @@ TEST(NeoHookean, HandComputedStress)
   pts.SetStress(2, M3::Constant(7.0));
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, 1e-3), 0);
 
-  const M3 expect0 = M3of(123.414429967303248, 0, 0, 0, 49.987856540729822, 0, 0, 0, 49.987856540729822);
-  const M3 expect1 = M3of(15.384615384615385, 76.923076923076923, 0, 76.923076923076923, 0, 0, 0, 0, 0);
+  const M3     expect0 = M3of(123.414429967303248, 0, 0, 0, 49.987856540729822, 0, 0, 0, 49.987856540729822);
+  const M3     expect1 = M3of(15.384615384615385, 76.923076923076923, 0, 76.923076923076923, 0, 0, 0, 0, 0);
   const double err0 = MaxAbs(pts.Stress(0) - expect0) / kMu, err1 = MaxAbs(pts.Stress(1) - expect1) / kMu;
   std::printf("  F = diag(1.1,1,1): sigma_xx = %.15g, sigma_yy = %.15g Pa\n", pts.Stress(0)(0, 0), pts.Stress(0)(1, 1));
   std::printf("  simple shear 0.2:  sigma_xx = %.15g, sigma_xy = %.15g Pa\n", pts.Stress(1)(0, 0), pts.Stress(1)(0, 1));
@@ -156,14 +150,15 @@ TEST(NeoHookean, Objectivity)
   ScopedOptions opt;
   Material     *m = CreateReference(opt, "nh_obj", "neo_hookean");
   ASSERT_NE(m, nullptr);
-  const M3 F = M3of(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12);
+  const M3 F    = M3of(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12);
   const M3 R[3] = {Rotation(0.7, {1, 2, 3}), Rotation(2.9, {-1, 0.5, 0.2}), Rotation(M_PI / 2, {0, 0, 1})};
+
   Points pts(4);
   pts.SetF(0, F);
   for (int r = 0; r < 3; ++r) pts.SetF(1 + r, R[r] * F);
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, 1e-3), 0);
-  const M3 s = pts.Stress(0);
-  double err = 0, asym = 0;
+  const M3 s   = pts.Stress(0);
+  double   err = 0, asym = 0;
   for (int r = 0; r < 3; ++r) err = std::max(err, MaxAbs(pts.Stress(1 + r) - R[r] * s * R[r].transpose()) / MaxAbs(s));
   for (int p = 0; p < 4; ++p) asym = std::max(asym, MaxAbs(pts.Stress(p) - pts.Stress(p).transpose()) / MaxAbs(s));
   Report("neo-Hookean: max |sigma(RF) - R sigma(F) R^T| / |sigma|", err, 1e-13, "objectivity of hyperelasticity");
@@ -187,7 +182,8 @@ TEST(NeoHookean, StressDerivesFromEnergy)
     return 0.5 * kMu * ((F * F.transpose()).trace() - 3) - kMu * lnJ + 0.5 * kLambda * lnJ * lnJ;
   };
   const M3 Fs[2] = {M3of(1.08, 0.13, -0.05, 0.02, 0.95, 0.21, -0.07, 0.04, 1.12), M3of(0.7, 0.3, 0, -0.2, 0.9, 0.1, 0.05, 0, 0.6)};
-  Points   pts(2);
+
+  Points pts(2);
   for (int p = 0; p < 2; ++p) pts.SetF(p, Fs[p]);
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, 1e-3), 0);
   double err = 0;
@@ -241,7 +237,8 @@ TEST(LinearElastic, UniaxialStrain)
   Material     *m = CreateReference(opt, "le_uni", "linear_elastic");
   ASSERT_NE(m, nullptr);
   const double e = 2.0, dt = 1e-4;
-  Points       pts(2);
+
+  Points pts(2);
   for (int p = 0; p < 2; ++p) {
     pts.SetL(p, M3of(e, 0, 0, 0, 0, 0, 0, 0, 0));
     pts.SetF(p, M3of(1 + e * dt, 0, 0, 0, 1, 0, 0, 0, 1));
@@ -276,7 +273,8 @@ TEST(LinearElastic, PureSpin)
   Material     *m = CreateReference(opt, "le_spin", "linear_elastic");
   ASSERT_NE(m, nullptr);
   const double w = 3.0, dt = 1e-3;
-  Points       pts(2);
+
+  Points pts(2);
   for (int p = 0; p < 2; ++p) pts.SetL(p, M3of(0, w, 0, -w, 0, 0, 0, 0, 0));
   pts.SetStress(1, M3of(100, 0, 0, 0, 0, 0, 0, 0, 0));
   ASSERT_EQ(m->UpdateStress(pts.Fields(), 0, dt), 0);
@@ -312,7 +310,8 @@ TEST(LinearElastic, PlaneMatchesGeneral)
   std::mt19937_64                        rng(2026);
   std::uniform_real_distribution<double> u(-50.0, 50.0);
   const double                           dt = 1e-4;
-  Points                                 pts(2);
+
+  Points pts(2);
   pts.SetStress(0, M3of(3, 1.5, 0, 1.5, -2, 0, 0, 0, 0.7));
   pts.SetStress(1, M3of(3, 1.5, 1e-300, 1.5, -2, 0, 1e-300, 0, 0.7));
   long differing = 0;

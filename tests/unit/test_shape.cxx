@@ -95,7 +95,7 @@ void RandomPositionAnywhere(std::mt19937_64 &rng, Particle<DIM> &p)
   std::uniform_real_distribution<double> u(0.0, 1.0);
   std::uniform_int_distribution<int>     zone(0, 2);
   for (int d = 0; d < DIM; ++d) {
-    const Axis &a = kAxes[d];
+    const Axis  &a = kAxes[d];
     const double L = Length(a), t = u(rng);
     double       s;
     switch (zone(rng)) {
@@ -144,8 +144,8 @@ void RandomPositionInterior(std::mt19937_64 &rng, Particle<DIM> &p)
     InteriorInterval<S>(a, EffectiveHalfWidth<S>(a, p.lp0[d], p.F[4 * d]), lo, hi);
     double s;
     switch (zone(rng)) {
-    case 0: s = lo; break;                                   // exactly on the limit
-    case 1: s = hi; break;                                   // exactly on the limit
+    case 0: s = lo; break;                                         // exactly on the limit
+    case 1: s = hi; break;                                         // exactly on the limit
     case 2: s = lo + std::min(0.5 * a.h, hi - lo) * u(rng); break; // next to the lower limit
     case 3: s = hi - std::min(0.5 * a.h, hi - lo) * u(rng); break; // next to the upper limit
     default: s = lo + (hi - lo) * u(rng); break;
@@ -197,8 +197,8 @@ Sums Evaluate(const Particle<DIM> &p, Stencil<DIM, S> &st)
   st.Evaluate(kAxes, p.x, p.lp0, p.F);
   Sums s;
   ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal dN[]) {
-    const PetscInt  ijk[3] = {i, j, k};
-    PetscReal       xI[3]  = {0, 0, 0};
+    const PetscInt ijk[3] = {i, j, k};
+    PetscReal      xI[3]  = {0, 0, 0};
     for (int d = 0; d < DIM; ++d) {
       EXPECT_GE(ijk[d], 0);
       EXPECT_LT(ijk[d], kAxes[d].nodes);
@@ -295,7 +295,7 @@ void CheckGradientIsDerivative()
 {
   std::mt19937_64 rng(4242 + 10 * DIM + (int)S);
   Particle<DIM>   p;
-  double          err = 0;
+  double          err     = 0;
   int             checked = 0;
   for (int n = 0; n < 2000; ++n) {
     RandomState(rng, p);
@@ -314,8 +314,8 @@ void CheckGradientIsDerivative()
     }
     const auto base = NodeWeights<DIM, S>(p);
     for (int d = 0; d < DIM; ++d) {
-      const double    step = 1e-6 * kAxes[d].h;
-      Particle<DIM>   pp = p, pm = p;
+      const double  step = 1e-6 * kAxes[d].h;
+      Particle<DIM> pp = p, pm = p;
       pp.x[d] += step;
       pm.x[d] -= step;
       auto wp = NodeWeights<DIM, S>(pp), wm = NodeWeights<DIM, S>(pm);
@@ -341,7 +341,7 @@ void CheckGradientIsDerivative()
 } // namespace
 
 // ----- partition of unity, gradient sum, linear reproduction, gradient consistency: 4 x 2 x 3 tests
-#define BURST_SHAPE_TESTS(SHAPE, DIM)                                                                   \
+#define BURST_SHAPE_TESTS(SHAPE, DIM) \
   TEST(Shape, PartitionOfUnity_##SHAPE##_##DIM##D) { CheckPartitionOfUnity<DIM, ShapeType::SHAPE>(); } \
   TEST(Shape, LinearReproduction_##SHAPE##_##DIM##D) { CheckLinearReproduction<DIM, ShapeType::SHAPE>(false); } \
   TEST(Shape, GradientIsDerivative_##SHAPE##_##DIM##D) { CheckGradientIsDerivative<DIM, ShapeType::SHAPE>(); }
@@ -489,8 +489,8 @@ TEST(Shape, GimpSmallWidthIsLinearHat)
 {
   std::mt19937_64                        rng(99);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const Axis                             a  = kAxes[0];
-  const double                           lp = 1e-9 * a.h;
+  const Axis                             a     = kAxes[0];
+  const double                           lp    = 1e-9 * a.h;
   double                                 err_w = 0, err_dw = 0;
   for (int n = 0; n < 20000; ++n) {
     const double x = a.origin + Length(a) * u(rng);
@@ -501,7 +501,7 @@ TEST(Shape, GimpSmallWidthIsLinearHat)
     std::map<PetscInt, std::pair<double, double>> g, l;
     for (int k = 0; k < 3; ++k) g[gi[k]].first += gw[k], g[gi[k]].second += gdw[k];
     for (int k = 0; k < 2; ++k) l[li[k]].first += lw[k], l[li[k]].second += ldw[k];
-    const double xi = (x - a.origin) / a.h;
+    const double xi        = (x - a.origin) / a.h;
     const bool   near_node = std::fabs(xi - std::round(xi)) * a.h < 2 * lp; // kink: gradients differ
     for (PetscInt i = 0; i < a.nodes; ++i) {
       const double hat = std::max(0.0, 1.0 - std::fabs(x - NodeX(a, i)) / a.h);
@@ -528,7 +528,7 @@ TEST(Shape, GimpClosedFormMatchesPieces)
 {
   std::mt19937_64                        rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
-  const Axis                             a = kAxes[0];
+  const Axis                             a     = kAxes[0];
   double                                 err_w = 0, err_dw = 0;
   int                                    zeros = 0, zero_mismatch = 0;
   for (int n = 0; n < 20000; ++n) {
@@ -559,10 +559,10 @@ TEST(Shape, GimpClosedFormMatchesPieces)
 // 0.15 h, and F_zz = 1 leaves lp0.
 TEST(Shape, CpGimpWidthFromF)
 {
-  const PetscReal lp0[3] = {0.25 * kAxes[0].h, 0.25 * kAxes[1].h, 0.25 * kAxes[2].h};
-  const PetscReal F[9]   = {3.0, 0.2, 0.0, -0.1, 0.6, 0.0, 0.0, 0.05, 1.0};
-  const PetscReal lp[3]  = {0.5 * kAxes[0].h, 0.15 * kAxes[1].h, 0.25 * kAxes[2].h};
-  const PetscReal x[3]   = {kAxes[0].origin + 4.37 * kAxes[0].h, kAxes[1].origin + 2.81 * kAxes[1].h, kAxes[2].origin + 6.02 * kAxes[2].h};
+  const PetscReal               lp0[3] = {0.25 * kAxes[0].h, 0.25 * kAxes[1].h, 0.25 * kAxes[2].h};
+  const PetscReal               F[9]   = {3.0, 0.2, 0.0, -0.1, 0.6, 0.0, 0.0, 0.05, 1.0};
+  const PetscReal               lp[3]  = {0.5 * kAxes[0].h, 0.15 * kAxes[1].h, 0.25 * kAxes[2].h};
+  const PetscReal               x[3]   = {kAxes[0].origin + 4.37 * kAxes[0].h, kAxes[1].origin + 2.81 * kAxes[1].h, kAxes[2].origin + 6.02 * kAxes[2].h};
   Stencil<3, ShapeType::CpGimp> cp;
   Stencil<3, ShapeType::UGimp>  ug;
   cp.Evaluate(kAxes, x, lp0, F);
@@ -592,7 +592,8 @@ TEST(Shape, WallHandValues)
   const Axis a = {0.0, 0.5, 6};
   PetscInt   idx[3];
   PetscReal  w[3], dw[3];
-  auto       per_node = [&](PetscInt node, bool grad) {
+
+  auto per_node = [&](PetscInt node, bool grad) {
     double s = 0;
     for (int k = 0; k < 3; ++k)
       if (idx[k] == node) s += grad ? dw[k] * a.h : w[k];
@@ -638,8 +639,8 @@ TEST(Shape, LinearGradientAtUpperWall)
 template <int DIM, ShapeType S>
 void CheckLiveNodes()
 {
-  using St = Stencil<DIM, S>;
-  constexpr int NS = St::NS;
+  using St           = Stencil<DIM, S>;
+  constexpr int   NS = St::NS;
   std::mt19937_64 rng(4242 + 10 * DIM + (int)S);
   St              st;
   Particle<DIM>   p;
@@ -653,12 +654,12 @@ void CheckLiveNodes()
     RandomPositionAnywhere(rng, p);
     st.Evaluate(kAxes, p.x, p.lp0, p.F);
     std::vector<std::array<double, 7>> full, visited;
-    const int nz = DIM == 3 ? NS : 1;
+    const int                          nz = DIM == 3 ? NS : 1;
     for (int c = 0; c < nz; ++c)
       for (int b = 0; b < NS; ++b)
         for (int a = 0; a < NS; ++a) {
           const double wz = DIM == 3 ? st.w[DIM - 1][c] : 1.0, dwz = DIM == 3 ? st.dw[DIM - 1][c] : 0.0;
-          const double N  = st.w[0][a] * st.w[1][b] * wz;
+          const double N     = st.w[0][a] * st.w[1][b] * wz;
           double       dN[3] = {st.dw[0][a] * st.w[1][b] * wz, st.w[0][a] * st.dw[1][b] * wz, st.w[0][a] * st.w[1][b] * dwz};
           const bool   live  = N != 0 || dN[0] != 0 || dN[1] != 0 || (DIM == 3 && dN[2] != 0);
           const bool   kept  = a >= st.lo[0] && a <= st.hi[0] && b >= st.lo[1] && b <= st.hi[1] && (DIM == 2 || (c >= st.lo[DIM - 1] && c <= st.hi[DIM - 1]));

@@ -37,7 +37,6 @@ void Report(const std::string &what, double measured, double tol, const char *so
   std::fflush(stdout);
 }
 
-
 // A stability check of material `mat` through the registry, as elastic_plastic.cxx creates them.
 std::unique_ptr<StabilityCheck> Create(const std::string &mat, const std::string &type)
 {
@@ -90,7 +89,7 @@ M3 Rotation(double w, double x, double y, double z)
 struct State {
   M3     s, D;
   double hardening = 0, thermal_softening = 0;
-  int    plastic   = 1;
+  int    plastic = 1;
 };
 
 void Fill(Chunk &c, int k, const State &st)
@@ -99,22 +98,22 @@ void Fill(Chunk &c, int k, const State &st)
     c.deviator[k][a] = st.s[a];
     c.D_hat[k][a]    = st.D[a];
   }
-  const double q          = std::sqrt(1.5 * Dot(st.s, st.s));
-  c.index[k]              = k;
-  c.shear_modulus[k]      = kMu;
-  c.bulk_modulus[k]       = kK;
-  c.density[k]            = kRho;
-  c.specific_heat[k]      = kCp;
-  c.temperature[k]        = 600;
-  c.melt_temperature[k]   = 1793;
-  c.pressure[k]           = -1e8;
-  c.flow_stress[k]        = q;
-  c.equivalent_stress[k]  = q;
-  c.hardening[k]          = st.hardening;
-  c.thermal_softening[k]  = st.thermal_softening;
+  const double q            = std::sqrt(1.5 * Dot(st.s, st.s));
+  c.index[k]                = k;
+  c.shear_modulus[k]        = kMu;
+  c.bulk_modulus[k]         = kK;
+  c.density[k]              = kRho;
+  c.specific_heat[k]        = kCp;
+  c.temperature[k]          = 600;
+  c.melt_temperature[k]     = 1793;
+  c.pressure[k]             = -1e8;
+  c.flow_stress[k]          = q;
+  c.equivalent_stress[k]    = q;
+  c.hardening[k]            = st.hardening;
+  c.thermal_softening[k]    = st.thermal_softening;
   c.delta_plastic_strain[k] = st.plastic ? 1e-5 : 0;
-  c.plastic[k]            = st.plastic;
-  c.unstable[k]           = 0;
+  c.plastic[k]              = st.plastic;
+  c.unstable[k]             = 0;
 }
 
 std::unique_ptr<Chunk> OnePoint(const State &st, int adiabatic)
@@ -146,7 +145,7 @@ double CriticalH(const StabilityCheck &check, const State &st)
   EXPECT_NE(Flags(check, st, lo), 0) << "not flagged at H = -2.9 mu";
   EXPECT_EQ(Flags(check, st, hi), 0) << "flagged at H = mu";
   for (int it = 0; it < 60; ++it) {
-    const double mid = 0.5 * (lo + hi);
+    const double mid                  = 0.5 * (lo + hi);
     (Flags(check, st, mid) ? lo : hi) = mid;
   }
   return 0.5 * (lo + hi);
@@ -169,11 +168,8 @@ struct Case {
   M3          direction;
 };
 const Case kCases[] = {
-  {"uniaxial tension (2,-1,-1)", Diag(2, -1, -1)},
-  {"uniaxial compression (1,1,-2)", Diag(1, 1, -2)},
-  {"pure shear / plane strain (1,0,-1)", Diag(1, 0, -1)},
-  {"intermediate (2,-0.5,-1.5)", Diag(2, -0.5, -1.5)},
-  {"intermediate (1.5,0.5,-2)", Diag(1.5, 0.5, -2)},
+  {"uniaxial tension (2,-1,-1)", Diag(2, -1, -1)},     {"uniaxial compression (1,1,-2)", Diag(1, 1, -2)}, {"pure shear / plane strain (1,0,-1)", Diag(1, 0, -1)},
+  {"intermediate (2,-0.5,-1.5)", Diag(2, -0.5, -1.5)}, {"intermediate (1.5,0.5,-2)", Diag(1.5, 0.5, -2)},
 };
 
 State PlaneState(const M3 &direction)
@@ -209,8 +205,8 @@ TEST(StabilityDrucker, ThresholdsAndThermalSoftening)
     cases.push_back({"uniaxial stress, D = diag(1,-.5,-.5)", st, 0.0});
     // uniaxial stress with lateral contraction nu' = 0.4: D' coaxial, tr D = 1 - 2 nu';
     // X = 3 K (1 - 2 nu')^2 / (4 mu (1 + nu')^2)
-    st.D             = Diag(1e3, -0.4e3, -0.4e3);
-    const double X   = 3 * kK * 0.2 * 0.2 / (4 * kMu * 1.4 * 1.4);
+    st.D           = Diag(1e3, -0.4e3, -0.4e3);
+    const double X = 3 * kK * 0.2 * 0.2 / (4 * kMu * 1.4 * 1.4);
     cases.push_back({"uniaxial stress, D = diag(1,-.4,-.4)", st, -3 * kMu * X / (1 + X)});
   }
   {
@@ -265,8 +261,8 @@ TEST(StabilityLocalization, AcousticAgreesWithBecker)
   ASSERT_TRUE(acoustic && becker);
   const M3 Q = Rotation(0.9, 0.3, -0.4, 0.2);
   for (const Case &cs : kCases) {
-    State        st  = PlaneState(cs.direction);
-    const double Ha  = CriticalH(*acoustic, st), Hb = CriticalH(*becker, st);
+    State        st = PlaneState(cs.direction);
+    const double Ha = CriticalH(*acoustic, st), Hb = CriticalH(*becker, st);
     State        rot = st;
     rot.s            = Rotate(Q, st.s);
     rot.D            = Rotate(Q, st.D);
@@ -285,7 +281,7 @@ TEST(StabilityLocalization, AcousticAgreesWithBecker)
   double worst = 0;
   for (int r = 0; r < 40; ++r) {
     const double lode = std::sin(1.7 * r + 0.3), q = kQ * (1 + 3 * (0.5 + 0.5 * std::cos(2.3 * r)));
-    const M3     Qr   = Rotation(std::sin(0.9 * r + 1), std::cos(1.1 * r), std::sin(2.9 * r), std::cos(0.4 * r + 2));
+    const M3     Qr = Rotation(std::sin(0.9 * r + 1), std::cos(1.1 * r), std::sin(2.9 * r), std::cos(0.4 * r + 2));
     State        st;
     st.s            = Rotate(Qr, OnYieldSurface(Diag(1, lode, -1 - lode), q));
     st.D            = Scale(st.s, 1e3 / q);
@@ -343,9 +339,8 @@ TEST(StabilityLocalization, WhereTheyDiffer)
   // (3) the reference's coefficients from laboratory components of C^ep and the principal stresses
   const auto reference = [&](const State &state, double Hr, double s1r, double s3r) {
     const double br = 6 * kMu * kMu / (3 * kMu + Hr), nn = std::sqrt(Dot(state.s, state.s));
-    const auto   M  = [&](int i, int j, int k, int l) {
-      return lam * (i == j) * (k == l) + kMu * ((i == k) * (j == l) + (i == l) * (j == k)) - br * state.s[3 * i + j] * state.s[3 * k + l] / (nn * nn);
-    };
+
+    const auto   M = [&](int i, int j, int k, int l) { return lam * (i == j) * (k == l) + kMu * ((i == k) * (j == l) + (i == l) * (j == k)) - br * state.s[3 * i + j] * state.s[3 * k + l] / (nn * nn); };
     const double p = -1e8, sg1 = s1r - p, sg3 = s3r - p; // principal stresses, pressure p of Fill
     const double A = M(2, 0, 2, 0) * (-sg3 + 2 * M(2, 2, 2, 2)), C = M(2, 0, 2, 0) * (-sg1 + 2 * M(0, 0, 0, 0));
     const double B = M(2, 0, 2, 0) * (sg3 - 2 * M(0, 0, 2, 2) + sg1 - 2 * M(2, 2, 0, 0)) + sg1 * (M(2, 2, 0, 0) - M(2, 2, 2, 2)) + sg3 * (M(0, 0, 2, 2) - M(0, 0, 0, 0)) + 2 * (-M(0, 0, 2, 2) * M(2, 2, 0, 0) + M(0, 0, 0, 0) * M(2, 2, 2, 2));
@@ -357,14 +352,14 @@ TEST(StabilityLocalization, WhereTheyDiffer)
     double lo = -1.5 * kMu, hi = kMu;
     if (!reference(state, lo, s1r, s3r) || reference(state, hi, s1r, s3r)) return std::nan("");
     for (int it = 0; it < 60; ++it) {
-      const double mid = 0.5 * (lo + hi);
+      const double mid                            = 0.5 * (lo + hi);
       (reference(state, mid, s1r, s3r) ? lo : hi) = mid;
     }
     return 0.5 * (lo + hi);
   };
-  const State  plane = PlaneState(Diag(2, -0.5, -1.5));
-  const double th = PETSC_PI / 6;
-  const M3     Q2 = {std::cos(th), 0, std::sin(th), 0, 1, 0, -std::sin(th), 0, std::cos(th)};
+  const State  plane   = PlaneState(Diag(2, -0.5, -1.5));
+  const double th      = PETSC_PI / 6;
+  const M3     Q2      = {std::cos(th), 0, std::sin(th), 0, 1, 0, -std::sin(th), 0, std::cos(th)};
   State        rotated = plane;
   rotated.s            = Rotate(Q2, plane.s);
   rotated.D            = Rotate(Q2, plane.D);
@@ -389,9 +384,9 @@ TEST(StabilityLocalization, ElasticPointsAndRudnickiRice)
 {
   ScopedOptions opts;
   opts.Set("-stab_rr_stability_stress_terms", "false");
-  auto drucker  = Create("stab_rr", "drucker");
-  auto acoustic = Create("stab_rr", "acoustic");
-  auto becker   = Create("stab_rr", "becker");
+  auto drucker    = Create("stab_rr", "drucker");
+  auto acoustic   = Create("stab_rr", "acoustic");
+  auto becker     = Create("stab_rr", "becker");
   auto acoustic_s = Create("stab_rr_s", "acoustic");
   ASSERT_TRUE(drucker && acoustic && becker && acoustic_s);
   // elastic points: any state, strongly softening, even 3 mu + H < 0
@@ -405,7 +400,7 @@ TEST(StabilityLocalization, ElasticPointsAndRudnickiRice)
   Report("flags set on 80 elastic evaluations (expected 0)", flagged, 0, "plastic = 0");
   EXPECT_EQ(flagged, 0);
   for (const Case &cs : kCases) {
-    const State  st = PlaneState(cs.direction);
+    const State  st  = PlaneState(cs.direction);
     const double Hrr = RudnickiRice(st.s), Ha = CriticalH(*acoustic, st), Hb = CriticalH(*becker, st), Has = CriticalH(*acoustic_s, st);
     Report(std::string("Rudnicki-Rice H_cr/mu, ") + cs.name, Hrr / kMu, 0, "RR 1975, Mises solid");
     Report("  (acoustic - RR)/mu, no stress terms", (Ha - Hrr) / kMu, 1e-6, "");
@@ -436,10 +431,10 @@ TEST(StabilityCost, NanosecondsPerPoint)
     Fill(*chunk, k, st);
   }
   for (const char *type : {"drucker", "becker", "acoustic"}) {
-    auto      check = Create("stab_cost", type);
-    const int reps  = std::string(type) == "acoustic" ? 200 : 20000;
-    int       bits  = 0;
-    const auto t0   = std::chrono::steady_clock::now();
+    auto       check = Create("stab_cost", type);
+    const int  reps  = std::string(type) == "acoustic" ? 200 : 20000;
+    int        bits  = 0;
+    const auto t0    = std::chrono::steady_clock::now();
     for (int r = 0; r < reps; ++r) {
       check->Evaluate(*chunk);
       bits |= chunk->unstable[r % kChunk];

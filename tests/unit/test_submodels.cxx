@@ -30,7 +30,6 @@ void Report(const std::string &what, double measured, double expected, double to
   std::fflush(stdout);
 }
 
-
 MaterialConstants Constants(const std::string &name, double rho, double mu)
 {
   MaterialConstants mc;
@@ -138,7 +137,7 @@ void CheckJC(const std::string &mat, const std::vector<std::pair<std::string, st
     auto flow = Create<FlowStress>(FlowStressList, Constants(mat, 7800, 80e9), "flow_stress", "johnson_cook");
     ASSERT_TRUE(flow);
     const double s = FlowAt(*flow, OnePoint(r.T, Tm, 80e9, 7800), r.eps, 0) / 1e6;
-    char what[128];
+    char         what[128];
     std::snprintf(what, sizeof(what), "JC %s sigma_f(%g, %g/s, %g K) MPa", mat.c_str(), r.eps, r.rate, r.T);
     Report(what, s, r.expected, 0.05, "models.md 7.1");
     EXPECT_NEAR(s, r.expected, 0.05) << what;
@@ -152,10 +151,7 @@ TEST(JohnsonCook, Table71_4340)
   CheckJC("jc4340", {{"A", "792e6"}, {"B", "510e6"}, {"n", "0.26"}, {"C", "0.014"}, {"m", "1.03"}}, 1793, {{0.1, 1, 298, 1072.3}, {0.1, 1e3, 298, 1176.0}, {0.5, 1e4, 298, 1374.9}, {0.2, 1e3, 600, 998.6}, {0.2, 1e3, 1000, 669.0}});
 }
 
-TEST(JohnsonCook, Table71_OFHCCopper)
-{
-  CheckJC("jccu", {{"A", "90e6"}, {"B", "292e6"}, {"n", "0.31"}, {"C", "0.025"}, {"m", "1.09"}}, 1356, {{0.1, 1, 298, 233.0}, {0.5, 1e3, 298, 381.8}, {1.0, 1e4, 298, 470.0}, {0.5, 1e3, 700, 248.8}});
-}
+TEST(JohnsonCook, Table71_OFHCCopper) { CheckJC("jccu", {{"A", "90e6"}, {"B", "292e6"}, {"n", "0.31"}, {"C", "0.025"}, {"m", "1.09"}}, 1356, {{0.1, 1, 298, 233.0}, {0.5, 1e3, 298, 381.8}, {1.0, 1e4, 298, 470.0}, {0.5, 1e3, 700, 248.8}}); }
 
 TEST(JohnsonCook, Table71_ArmcoIron)
 {
@@ -164,10 +160,7 @@ TEST(JohnsonCook, Table71_ArmcoIron)
   CheckJC("jcarmcou", {{"A", "175e6"}, {"B", "380e6"}, {"n", "0.32"}, {"C", "0.060"}, {"m", "1.44"}}, 1811, {{0.1, 1, 298, 356.9}, {0.5, 1e3, 298, 678.1}, {0.2, 1e3, 600, 512.8}});
 }
 
-TEST(JohnsonCook, Table71_HY100)
-{
-  CheckJC("jchy", {{"A", "316e6"}, {"B", "1067e6"}, {"n", "0.107"}, {"C", "0.0277"}, {"m", "0.7"}, {"reference_rate", "3300"}, {"room_temperature", "300"}}, 1500, {{0.1, 3300, 300, 1150.0}});
-}
+TEST(JohnsonCook, Table71_HY100) { CheckJC("jchy", {{"A", "316e6"}, {"B", "1067e6"}, {"n", "0.107"}, {"C", "0.0277"}, {"m", "0.7"}, {"reference_rate", "3300"}, {"room_temperature", "300"}}, 1500, {{0.1, 3300, 300, 1150.0}}); }
 
 // ---------------------------------------------------------------------------------------------------
 // MTS, annealed copper (models.md 6.4, 7.2), with the MTS shear modulus (mu0 47.7, D 3.0 GPa, T0 180 K).
@@ -177,7 +170,22 @@ void SetCopperMTS(ScopedOptions &opt, const std::string &mat)
   opt.Set("-" + mat + "_shear_modulus_type", "mts");
   opt.Family(mat, "shear_modulus", {{"mu0", "47.7e9"}, {"D", "3.0e9"}, {"T0", "180"}});
   opt.Set("-" + mat + "_flow_stress_type", "mts");
-  opt.Family(mat, "flow_stress", {{"sigma_a", "40e6"}, {"k_over_b3", "0.823e6"}, {"g0e", "1.6"}, {"edot0e", "1e7"}, {"p_e", "0.666666666666667"}, {"q_e", "1"}, {"a0", "2390e6"}, {"a1", "12e6"}, {"a2", "1.696e6"}, {"a3", "0"}, {"theta_IV", "0"}, {"alpha", "2"}, {"edot_es0", "1e7"}, {"g0es", "0.2625"}, {"sigma_es0", "770e6"}});
+  opt.Family(mat, "flow_stress",
+             {{"sigma_a", "40e6"},
+              {"k_over_b3", "0.823e6"},
+              {"g0e", "1.6"},
+              {"edot0e", "1e7"},
+              {"p_e", "0.666666666666667"},
+              {"q_e", "1"},
+              {"a0", "2390e6"},
+              {"a1", "12e6"},
+              {"a2", "1.696e6"},
+              {"a3", "0"},
+              {"theta_IV", "0"},
+              {"alpha", "2"},
+              {"edot_es0", "1e7"},
+              {"g0es", "0.2625"},
+              {"sigma_es0", "770e6"}});
 }
 } // namespace
 
@@ -186,11 +194,11 @@ TEST(MTS, Table72_AnnealedCopper)
   struct Case {
     double rate, T, mu, Se, ses, theta0, sigma[6];
   };
-  const Case cases[] = {{1e-3, 298, 44.08, 0.8823, 472.7, 2307.2, {40.0, 114.27, 162.09, 221.08, 257.55, 302.45}},
-                        {1e3, 298, 44.08, 0.9523, 633.5, 2526.5, {40.0, 131.39, 194.35, 276.07, 328.38, 394.39}},
-                        {4e3, 696, 37.54, 0.8902, 488.6, 2596.8, {40.0, 110.46, 154.44, 207.57, 239.95, 279.44}}};
-  const double eps_targets[6] = {0, 0.05, 0.1, 0.2, 0.3, 0.5};
-  const double rho = 8930, Tm = 1356, sigma_a = 40e6;
+  const Case    cases[]        = {{1e-3, 298, 44.08, 0.8823, 472.7, 2307.2, {40.0, 114.27, 162.09, 221.08, 257.55, 302.45}},
+                                  {1e3, 298, 44.08, 0.9523, 633.5, 2526.5, {40.0, 131.39, 194.35, 276.07, 328.38, 394.39}},
+                                  {4e3, 696, 37.54, 0.8902, 488.6, 2596.8, {40.0, 110.46, 154.44, 207.57, 239.95, 279.44}}};
+  const double  eps_targets[6] = {0, 0.05, 0.1, 0.2, 0.3, 0.5};
+  const double  rho = 8930, Tm = 1356, sigma_a = 40e6;
   ScopedOptions opt;
   SetCopperMTS(opt, "mtscu");
   for (const Case &k : cases) {
@@ -218,7 +226,7 @@ TEST(MTS, Table72_AnnealedCopper)
     // hardening (mu/mu0) S_e theta(sigma_hat_e)), found by bisection on the history
     double lo = 1e6, hi = 2e9;
     for (int it = 0; it < 100; ++it) {
-      const double mid = 0.5 * (lo + hi);
+      const double mid                           = 0.5 * (lo + hi);
       (HardeningAt(*flow, c, mid) > 0 ? lo : hi) = mid;
     }
     const double ses = 0.5 * (lo + hi) / 1e6;
@@ -267,7 +275,8 @@ void SetHY100MTS(ScopedOptions &opt, const std::string &mat)
   opt.Set("-" + mat + "_shear_modulus_type", "mts");
   opt.Family(mat, "shear_modulus", {{"mu0", "71.46e9"}, {"D", "2.9e9"}, {"T0", "204"}});
   opt.Set("-" + mat + "_flow_stress_type", "mts");
-  opt.Family(mat, "flow_stress", {{"sigma_a", "40e6"}, {"k_over_b3", "0.905e6"}, {"sigma_i", "1341e6"}, {"g0i", "1.161"}, {"edot0i", "1e13"}, {"p_i", "0.5"}, {"q_i", "1.5"}, {"g0e", "1.6"}, {"edot0e", "1e7"}, {"p_e", "0.666666666666667"}, {"q_e", "1"}, {"a0", "6.0e9"}, {"a1", "0"}, {"a2", "0"}, {"a3", "2.0758e6"}, {"theta_IV", "200e6"}, {"alpha", "3"}, {"edot_es0", "1e7"}, {"g0es", "0.112"}, {"sigma_es0", "822e6"}});
+  opt.Family(mat, "flow_stress", {{"sigma_a", "40e6"}, {"k_over_b3", "0.905e6"}, {"sigma_i", "1341e6"}, {"g0i", "1.161"}, {"edot0i", "1e13"}, {"p_i", "0.5"},        {"q_i", "1.5"}, {"g0e", "1.6"},      {"edot0e", "1e7"}, {"p_e", "0.666666666666667"},
+                                  {"q_e", "1"},        {"a0", "6.0e9"},          {"a1", "0"},           {"a2", "0"},      {"a3", "2.0758e6"}, {"theta_IV", "200e6"}, {"alpha", "3"}, {"edot_es0", "1e7"}, {"g0es", "0.112"}, {"sigma_es0", "822e6"}});
 }
 
 // The HY-100 MTS flow model of material `mat` with the rate floor min_rate (1/s), created with the
@@ -329,7 +338,8 @@ TEST(MTS, DerivativesAlongReturn)
   ReturnSettings settings;
   settings.tolerance = 1e-14;
   const double mu = 66e9, T = 500;
-  double history = 0;
+  double       history = 0;
+
   auto Run = [&](double q, double dt, double temperature) {
     Chunk c             = OnePoint(temperature, 2000, mu, 7860);
     c.dt                = dt;
@@ -340,26 +350,26 @@ TEST(MTS, DerivativesAlongReturn)
     EXPECT_EQ(c.plastic[0], 1);
     return c;
   };
-  for (double h : {100e6, 450e6}) // below and above saturation (X = 2.25: theta from the same formula, stage IV)
-  for (double dt : {1e6, 1e-5}) { // rate floored (d_strain alone) / rate 1e3-1e4 /s (d_strain + d_rate/dt)
-    history = h;
-    const double q  = 1.5e9;
-    const Chunk  a  = Run(q, dt, T), b = Run(q + 1e5, dt, T);
-    const double fd = (b.flow_stress[0] - a.flow_stress[0]) / (b.delta_plastic_strain[0] - a.delta_plastic_strain[0]);
-    // the total slope along the return is strain hardening plus the rate term (rate_hardening)
-    const double an = 0.5 * (a.hardening[0] + a.rate_hardening[0] + b.hardening[0] + b.rate_hardening[0]);
-    char         what[128];
-    std::snprintf(what, sizeof(what), "MTS hardening rel. error vs FD (h %g, dt %g s, H %.3g Pa)", h, dt, an);
-    Report(what, std::fabs(an - fd) / std::fabs(fd), 0, 1e-4, "central difference along the return");
-    EXPECT_GT(an, 1e8); // not at saturation: the check is not vacuous
-    EXPECT_NEAR(an, fd, 1e-4 * std::fabs(fd));
-    const Chunk  hot = Run(q, dt, T + 0.01), cold = Run(q, dt, T - 0.01);
-    const double dT  = (hot.flow_stress[0] - cold.flow_stress[0]) / 0.02 * (3 * mu + a.hardening[0] + a.rate_hardening[0]) / (3 * mu);
-    std::snprintf(what, sizeof(what), "MTS d sigma/dT rel. error vs FD (h %g, dt %g s, %.4g Pa/K)", h, dt, a.thermal_softening[0]);
-    Report(what, std::fabs(a.thermal_softening[0] - dT) / std::fabs(dT), 0, 1e-4, "central difference in T along the return");
-    EXPECT_NEAR(a.thermal_softening[0], dT, 1e-4 * std::fabs(dT));
-    EXPECT_LT(a.thermal_softening[0], 0);
-  }
+  for (double h : {100e6, 450e6})   // below and above saturation (X = 2.25: theta from the same formula, stage IV)
+    for (double dt : {1e6, 1e-5}) { // rate floored (d_strain alone) / rate 1e3-1e4 /s (d_strain + d_rate/dt)
+      history        = h;
+      const double q = 1.5e9;
+      const Chunk  a = Run(q, dt, T), b = Run(q + 1e5, dt, T);
+      const double fd = (b.flow_stress[0] - a.flow_stress[0]) / (b.delta_plastic_strain[0] - a.delta_plastic_strain[0]);
+      // the total slope along the return is strain hardening plus the rate term (rate_hardening)
+      const double an = 0.5 * (a.hardening[0] + a.rate_hardening[0] + b.hardening[0] + b.rate_hardening[0]);
+      char         what[128];
+      std::snprintf(what, sizeof(what), "MTS hardening rel. error vs FD (h %g, dt %g s, H %.3g Pa)", h, dt, an);
+      Report(what, std::fabs(an - fd) / std::fabs(fd), 0, 1e-4, "central difference along the return");
+      EXPECT_GT(an, 1e8); // not at saturation: the check is not vacuous
+      EXPECT_NEAR(an, fd, 1e-4 * std::fabs(fd));
+      const Chunk  hot = Run(q, dt, T + 0.01), cold = Run(q, dt, T - 0.01);
+      const double dT = (hot.flow_stress[0] - cold.flow_stress[0]) / 0.02 * (3 * mu + a.hardening[0] + a.rate_hardening[0]) / (3 * mu);
+      std::snprintf(what, sizeof(what), "MTS d sigma/dT rel. error vs FD (h %g, dt %g s, %.4g Pa/K)", h, dt, a.thermal_softening[0]);
+      Report(what, std::fabs(a.thermal_softening[0] - dT) / std::fabs(dT), 0, 1e-4, "central difference in T along the return");
+      EXPECT_NEAR(a.thermal_softening[0], dT, 1e-4 * std::fabs(dT));
+      EXPECT_LT(a.thermal_softening[0], 0);
+    }
 }
 
 // sigma_hat_e is a structure variable of eq. 11 (sigma_hat_e^{n+1} = sigma_hat_e^n + theta Delta eps):
@@ -375,8 +385,8 @@ TEST(MTS, HistoryChangesOnlyWithPlasticStrain)
   auto          flow = HY100MTSFlow(opt, "mtshist", "3");
   ASSERT_TRUE(flow);
   const double T = 622, mu = 71.46e9 - 2.9e9 / (std::exp(204.0 / T) - 1), h = 450e6;
-  Chunk        c = OnePoint(T, 2000, mu, 7860);
-  c.dt           = 1e6; // the rate fed stays at min_rate
+  Chunk        c      = OnePoint(T, 2000, mu, 7860);
+  c.dt                = 1e6; // the rate fed stays at min_rate
   c.plastic_strain[0] = 0.17;
   const double sigma0 = FlowAt(*flow, c, 0.17, h);
   c.history[0][0]     = h;
@@ -415,8 +425,8 @@ TEST(SCG, ShearAndMeltByHand)
   opt.Family("scg", "shear_modulus", {{"A", "20.6e-12"}, {"B", "0.16e-3"}});
   opt.Set("-scg_melt_type", "scg");
   opt.Family("scg", "melt", {{"Tm0", "2310"}, {"Gamma0", "3.0"}, {"a", "1.67"}});
-  const double      rho0 = 7830;
-  MaterialConstants mc   = Constants("scg", rho0, 81.8e9); // mu0 defaults to the material's modulus
+  const double      rho0  = 7830;
+  MaterialConstants mc    = Constants("scg", rho0, 81.8e9); // mu0 defaults to the material's modulus
   auto              shear = Create<ShearModulusModel>(ShearModulusList, mc, "shear_modulus", "constant");
   auto              melt  = Create<MeltModel>(MeltList, mc, "melt", "constant");
   ASSERT_TRUE(shear && melt);
@@ -473,10 +483,11 @@ TEST(SpecificHeat, Table74AndCopper)
   auto goto19 = Create<SpecificHeatModel>(SpecificHeatList, Constants("cpg", 7860, 69e9), "specific_heat", "constant");
   auto copper = Create<SpecificHeatModel>(SpecificHeatList, Constants("cpc", 8930, 45e9), "specific_heat", "constant");
   ASSERT_TRUE(steel && goto19 && copper);
-  const double T[]      = {298, 400, 500, 600, 800, 1000, 1100, 1300};
-  const double two[]    = {442.4, 482.6, 524.9, 571.1, 687.8, 982.2, 638.5, 626.6};
-  const double eq19[]   = {454.6, 468.5, 515.1, 574.5, 708.5, 850.6, 923.0, 1069.1};
-  auto         Cp       = [](const SpecificHeatModel &m, double temperature) { return Evaluated(m, OnePoint(temperature, 3000, 0, 7830)).specific_heat[0]; };
+  const double T[]    = {298, 400, 500, 600, 800, 1000, 1100, 1300};
+  const double two[]  = {442.4, 482.6, 524.9, 571.1, 687.8, 982.2, 638.5, 626.6};
+  const double eq19[] = {454.6, 468.5, 515.1, 574.5, 708.5, 850.6, 923.0, 1069.1};
+
+  auto Cp = [](const SpecificHeatModel &m, double temperature) { return Evaluated(m, OnePoint(temperature, 3000, 0, 7830)).specific_heat[0]; };
   for (int i = 0; i < 8; ++i) {
     char what[96];
     std::snprintf(what, sizeof(what), "steel Cp two-branch (%g K) J/(kg K)", T[i]);
@@ -530,11 +541,11 @@ TEST(SubModelInput, MissingOrBadParameterNamesOption)
                         {"shear_modulus", "scg", "B", "", "", "-mi2_shear_modulus_B"},
                         {"melt", "scg", "Tm0", "", "", "-mi3_melt_Tm0"},
                         {"specific_heat", "steel", "", "curie_width", "-5", "-mi4_specific_heat_curie_width"}};
-  int i = 0;
+  int        i       = 0;
   for (const Case &k : cases) {
     const std::string mat = "mi" + std::to_string(i++);
     ScopedOptions     opt;
-    std::string       family = k.family;
+    std::string       family                    = k.family;
     PetscErrorCode (*list)(PetscFunctionList *) = family == "flow_stress" ? FlowStressList : family == "shear_modulus" ? ShearModulusList : family == "melt" ? MeltList : SpecificHeatList;
     if (family == "flow_stress") SetCopperMTS(opt, mat);
     opt.Set("-" + mat + "_" + family + "_type", k.type);

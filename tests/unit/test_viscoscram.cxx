@@ -91,7 +91,7 @@ double Rk4Bound(double lambda, double h, double t, double share) { return lambda
 
 TEST(ViscoScramFrozenCracks, SimpleShearAtConstantRate)
 {
-  const vs::Parameters p = Pbx9501(false);
+  const vs::Parameters p    = Pbx9501(false);
   const double         gdot = 1e3, t_end = 2e-6, D[6] = {0, 0, 0, 0.5 * gdot, 0, 0};
   const double         scale = ShearClosedForm(gdot, t_end);
   double               errors[3];
@@ -115,7 +115,7 @@ TEST(ViscoScramFrozenCracks, SimpleShearAtConstantRate)
 
 TEST(ViscoScramFrozenCracks, StepStrainRelaxation)
 {
-  const vs::Parameters p = Pbx9501(false);
+  const vs::Parameters p      = Pbx9501(false);
   const double         gamma0 = 1e-3, t_end = 2e-6, D[6] = {0, 0, 0, 0, 0, 0};
   double               errors[3];
   const int            steps[3] = {8, 16, 32};
@@ -140,10 +140,10 @@ TEST(ViscoScramFrozenCracks, StepStrainRelaxation)
 // accuracy of those sub-steps; a step of lambda_5 dt = 0.16 (the exploding scenes' 8e-8 s) is not cut.
 TEST(ViscoScramFrozenCracks, SubStepsOnlyWhenAsked)
 {
-  vs::Parameters p = Pbx9501(false);
+  vs::Parameters p             = Pbx9501(false);
   p.max_relaxation_per_substep = 0.5;
   const double gdot = 1e3, D[6] = {0, 0, 0, 0.5 * gdot, 0, 0};
-  double       S[30] = {};
+  double       S[30]    = {};
   int          substeps = 0;
   auto         xy       = Drive(p, S, 0, D, 4e-6, 1, &substeps);
   const double error    = std::fabs(xy[0] - ShearClosedForm(gdot, 4e-6)) / ShearClosedForm(gdot, 4e-6);
@@ -162,16 +162,16 @@ TEST(ViscoScramFrozenCracks, SubStepsOnlyWhenAsked)
 // shear from rest sigma_xy = gdot G tau (1 - e^{-t/(tau (1 + x))}); step strain gamma0 G/(1 + x) e^{-t/(tau (1 + x))}.
 TEST(ViscoScramFrozenCrack, OneElementClosedForm)
 {
-  vs::Parameters p = Pbx9501(false);
-  p.elements = 1;
+  vs::Parameters p  = Pbx9501(false);
+  p.elements        = 1;
   p.shear_moduli[0] = 1e9, p.relaxation_rates[0] = 1e6;
   p.Derive();
   const double x = 0.125, c = 0.5 * p.crack_scale, gdot = 1e3, t_end = 4e-6, lambda_eff = 1e6 / (1 + x);
   // instantaneous modulus: a shear step of 1e-14 s (lambda dt = 1e-8)
   {
-    double S[30] = {};
-    const double D[6] = {0, 0, 0, 0.5 * gdot, 0, 0};
-    auto   xy = Drive(p, S, c, D, 1e-14, 1);
+    double       S[30]   = {};
+    const double D[6]    = {0, 0, 0, 0.5 * gdot, 0, 0};
+    auto         xy      = Drive(p, S, c, D, 1e-14, 1);
     const double modulus = xy[0] / (gdot * 1e-14);
     const double error   = std::fabs(modulus / (1e9 / (1 + x)) - 1);
     Report("frozen crack: instantaneous modulus / (G/(1 + x)) - 1", error, 1e-7, "O(lambda dt) = 1e-8");
@@ -179,14 +179,14 @@ TEST(ViscoScramFrozenCrack, OneElementClosedForm)
   }
   double errors[2];
   for (int k = 0; k < 2; ++k) {
-    const int    n = 32 << k;
+    const int    n     = 32 << k;
     double       S[30] = {};
-    const double D[6] = {0, 0, 0, 0.5 * gdot, 0, 0};
-    auto         xy = Drive(p, S, c, D, t_end, n);
-    errors[k] = 0;
+    const double D[6]  = {0, 0, 0, 0.5 * gdot, 0, 0};
+    auto         xy    = Drive(p, S, c, D, t_end, n);
+    errors[k]          = 0;
     for (int j = 0; j < n; ++j) {
       const double t = (j + 1) * t_end / n;
-      errors[k] = std::fmax(errors[k], std::fabs(xy[j] - gdot * 1e9 / 1e6 * (1 - std::exp(-lambda_eff * t))) / (gdot * 1e3));
+      errors[k]      = std::fmax(errors[k], std::fabs(xy[j] - gdot * 1e9 / 1e6 * (1 - std::exp(-lambda_eff * t))) / (gdot * 1e3));
     }
   }
   const double bound = Rk4Bound(lambda_eff, t_end / 64, t_end, 1.0);
@@ -196,10 +196,10 @@ TEST(ViscoScramFrozenCrack, OneElementClosedForm)
   EXPECT_GT(std::log2(errors[0] / errors[1]), 3.7);
   // step strain: S(0+) = G gamma0/(1 + x), then relaxation at lambda/(1 + x)
   {
-    double       S[30] = {};
+    double       S[30]  = {};
     const double gamma0 = 1e-3, D[6] = {0, 0, 0, 0.5 * gamma0 / 1e-14, 0, 0}, D0[6] = {0, 0, 0, 0, 0, 0};
     Drive(p, S, c, D, 1e-14, 1);
-    auto         xy = Drive(p, S, c, D0, t_end, 64);
+    auto         xy    = Drive(p, S, c, D0, t_end, 64);
     const double exact = gamma0 * 1e9 / (1 + x) * std::exp(-lambda_eff * t_end), error = std::fabs(xy.back() / exact - 1);
     const double bound = Rk4Bound(lambda_eff, t_end / 64, t_end, 1.0) * std::exp(lambda_eff * t_end) + 1e-7;
     Report("frozen crack, one element, step strain: relative error at 4 us", error, bound, "RK4 bound relative to e^{-lambda t/(1+x)}, + O(lambda dt) of the step");
@@ -212,16 +212,17 @@ TEST(ViscoScramFrozenCrack, OneElementClosedForm)
 // exponential of its 5x5 matrix (eigen-decomposition).
 TEST(ViscoScramFrozenCrack, FiveElementsExactExponential)
 {
-  const vs::Parameters p = Pbx9501(false);
-  const double         x = 0.125, c = 0.5 * p.crack_scale, gamma0 = 1e-3, t_end = 2e-6, G = p.shear_modulus;
+  const vs::Parameters        p = Pbx9501(false);
+  const double                x = 0.125, c = 0.5 * p.crack_scale, gamma0 = 1e-3, t_end = 2e-6, G = p.shear_modulus;
   Eigen::Matrix<double, 5, 5> A;
   for (int i = 0; i < 5; ++i)
     for (int j = 0; j < 5; ++j) A(i, j) = (i == j ? -kLambda[i] : 0) + kG[i] / G * x / (1 + x) * kLambda[j];
   Eigen::Matrix<double, 5, 1> y0;
   for (int i = 0; i < 5; ++i) y0(i) = kG[i] * gamma0 / (1 + x);
   Eigen::EigenSolver<Eigen::Matrix<double, 5, 5>> eig(A);
-  const Eigen::Matrix<std::complex<double>, 5, 5> V = eig.eigenvectors();
+  const Eigen::Matrix<std::complex<double>, 5, 5> V    = eig.eigenvectors();
   const Eigen::Matrix<std::complex<double>, 5, 1> coef = V.fullPivLu().solve(y0.cast<std::complex<double>>());
+
   auto exact = [&](double t) {
     std::complex<double> s = 0;
     for (int k = 0; k < 5; ++k) s += coef(k) * std::exp(eig.eigenvalues()(k) * t) * V.col(k).sum();
@@ -230,22 +231,22 @@ TEST(ViscoScramFrozenCrack, FiveElementsExactExponential)
   // instantaneous modulus
   double       S[30] = {};
   const double D[6] = {0, 0, 0, 0.5 * gamma0 / 1e-14, 0, 0}, D0[6] = {0, 0, 0, 0, 0, 0};
-  auto         xy0 = Drive(p, S, c, D, 1e-14, 1);
+  auto         xy0       = Drive(p, S, c, D, 1e-14, 1);
   const double e_modulus = std::fabs(xy0[0] / (gamma0 * G / (1 + x)) - 1);
   Report("frozen crack, five elements: sigma_xy(0+) / (G gamma0/(1 + x)) - 1", e_modulus, 1e-7, "O(lambda_5 dt) = 2e-8");
   EXPECT_LT(e_modulus, 1e-7);
   // initial relaxation rate: sigma' = -sum lambda_j S_j/(1 + x)
-  double       rate_exact = 0;
+  double rate_exact = 0;
   for (int i = 0; i < 5; ++i) rate_exact -= kLambda[i] * kG[i] * gamma0 / (1 + x) / (1 + x);
-  double       S1[30];
+  double S1[30];
   for (int k = 0; k < 30; ++k) S1[k] = S[k];
-  const double h = 1e-12;
-  auto         xy1 = Drive(p, S1, c, D0, h, 1);
+  const double h      = 1e-12;
+  auto         xy1    = Drive(p, S1, c, D0, h, 1);
   const double e_rate = std::fabs((xy1[0] - xy0[0]) / h / rate_exact - 1);
   Report("frozen crack, five elements: initial relaxation rate / closed form - 1", e_rate, 1e-5, "O(lambda_5 h) = 2e-6");
   EXPECT_LT(e_rate, 1e-5);
   // the whole relaxation curve
-  auto   xy = Drive(p, S, c, D0, t_end, 64);
+  auto   xy    = Drive(p, S, c, D0, t_end, 64);
   double error = 0;
   for (int n = 0; n < 64; ++n) error = std::fmax(error, std::fabs(xy[n] - exact((n + 1) * t_end / 64)) / (G * gamma0));
   const double bound = Rk4Bound(2e6, t_end / 64, t_end, 1.0) + 1e-7;
@@ -261,18 +262,18 @@ TEST(ViscoScramFrozenCrack, FiveElementsExactExponential)
 TEST(ViscoScramEnergy, StressWorkEqualsStoredPlusDissipated)
 {
   for (vs::CrackHeating heating : {vs::CrackHeating::CrackWork, vs::CrackHeating::Release}) {
-    vs::Parameters p = Pbx9501(true);
-    p.crack_heating  = heating;
-    p.gruneisen      = 1.0; // no volume change: no thermoelastic term
+    vs::Parameters p  = Pbx9501(true);
+    p.crack_heating   = heating;
+    p.gruneisen       = 1.0; // no volume change: no thermoelastic term
     const char  *name = heating == vs::CrackHeating::CrackWork ? "crack_work" : "release";
     const double gdot = 1e4, t_end = 5e-6, D[6] = {0, 0, 0, 0.5 * gdot, 0, 0}, rho = 1840;
     double       mismatch[2], estimate[2], dissipated_share = 0, crack_share = 0, c_end = 0;
     for (int k = 0; k < 2; ++k) {
-      const int  n = 1000 << k;
-      const double dt = t_end / n;
-      double     S[30] = {}, c = 3e-5, work = 0, viscous = 0, crack = 0, dT = 0, s_old = 0, d2 = 0;
+      const int           n     = 1000 << k;
+      const double        dt    = t_end / n;
+      double              S[30] = {}, c = 3e-5, work = 0, viscous = 0, crack = 0, dT = 0, s_old = 0, d2 = 0;
       std::vector<double> s(1, 0.0);
-      vs::Result r;
+      vs::Result          r;
       for (int j = 0; j < n; ++j) {
         vs::Update(p, S, &c, 0, D, dt, rho, 300, &r);
         work += 2 * 0.5 * (s_old + r.deviator[3]) * D[3] * dt; // S:D' = 2 S_xy D_xy
@@ -335,7 +336,8 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
   ASSERT_EQ(material->InitializeState(mp, 0, 2), 0);
   const double rate = 1e3, omega = 1e6, dt = 5e-8;
   M3           F_load = M3::Identity();
-  auto         step   = [&](const M3 L[2], const M3 F[2], double t) {
+
+  auto step = [&](const M3 L[2], const M3 F[2], double t) {
     for (int p = 0; p < 2; ++p) {
       Eigen::Map<M3>(Lp + 9 * p) = L[p];
       Eigen::Map<M3>(Fp + 9 * p) = F[p];
@@ -347,11 +349,11 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
   double t = 0;
   for (int n = 0; n < 20; ++n) {
     t += dt;
-    F_load(0, 0)      = 1 + rate * t;
-    const M3 L[2]     = {M3::Zero(), M3::Zero()};
-    M3       Ls[2]    = {L[0], L[1]};
+    F_load(0, 0)   = 1 + rate * t;
+    const M3 L[2]  = {M3::Zero(), M3::Zero()};
+    M3       Ls[2] = {L[0], L[1]};
     Ls[0](0, 0) = Ls[1](0, 0) = rate / F_load(0, 0); // L = Fdot F^-1 of F = diag(1 + rate t, 1, 1)
-    const M3 F[2]     = {F_load, F_load};
+    const M3 F[2]             = {F_load, F_load};
     step(Ls, F, t);
   }
   double theta = 0;
@@ -365,17 +367,17 @@ TEST(ViscoScramMaterial, RigidRotationKeepsInvariants)
     const M3 L[2] = {W, M3::Zero()}, F[2] = {R * F_load, F_load};
     step(L, F, t);
   }
-  M3     R = M3::Identity();
+  M3 R    = M3::Identity();
   R(0, 0) = R(1, 1) = std::cos(theta);
   R(0, 1) = -std::sin(theta), R(1, 0) = std::sin(theta);
   PetscReal *crack = nullptr;
   ASSERT_EQ(storage.State().Get("crack_radius", &crack), 0);
-  const M3     spun = Eigen::Map<M3>(sigma_p), still = Eigen::Map<M3>(sigma_p + 9);
-  const double c_spun = crack[0], c_still = crack[1], T_spun = T[0], T_still = T[1];
-  const double scale = still.cwiseAbs().maxCoeff();
+  const M3                          spun = Eigen::Map<M3>(sigma_p), still = Eigen::Map<M3>(sigma_p + 9);
+  const double                      c_spun = crack[0], c_still = crack[1], T_spun = T[0], T_still = T[1];
+  const double                      scale = still.cwiseAbs().maxCoeff();
   Eigen::SelfAdjointEigenSolver<M3> e_spun(spun), e_still(still);
-  const double err_tensor = (R.transpose() * spun * R - still).cwiseAbs().maxCoeff() / scale;
-  const double err_eigen  = (e_spun.eigenvalues() - e_still.eigenvalues()).cwiseAbs().maxCoeff() / scale;
+  const double                      err_tensor = (R.transpose() * spun * R - still).cwiseAbs().maxCoeff() / scale;
+  const double                      err_eigen  = (e_spun.eigenvalues() - e_still.eigenvalues()).cwiseAbs().maxCoeff() / scale;
   std::printf("[ measured ] loaded to sigma_xx %.4e Pa, crack %.3e m (from 3e-5), spun by %.1f rad\n", still(0, 0), c_still, theta);
   Report("rigid spin: max |R^T sigma R - sigma_still| / |sigma|", err_tensor, 1e-12, "rounding (D = 0 exactly: same kernel input)");
   Report("rigid spin: principal stresses, max difference / |sigma|", err_eigen, 1e-12, "rounding");
