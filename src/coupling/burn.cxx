@@ -108,10 +108,9 @@ PetscReal *CouplingCounters(Coupling &c) { return c.counters; }
 PetscErrorCode CouplingIgnition(Coupling &c, PetscInt material, std::string *model, PetscReal *temperature)
 {
   PetscFunctionBeginUser;
-  const MpmSolver &mpm = *c.mpm;
-  const PetscInt   s   = c.solid_of[material];
-  *model               = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
-  *temperature         = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
+  const PetscInt s = c.solid_of[material];
+  *model           = s >= 0 && c.burn[s] ? c.burn[s]->name_ : "none";
+  *temperature     = s >= 0 && c.burn[s] ? c.burn[s]->IgnitionTemperature() : 0;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -240,7 +239,6 @@ PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal w
 
 PetscErrorCode CouplingBurn(Coupling &c)
 {
-  MpmSolver         &mpm = *c.mpm;
   IceSolver         &ice = *c.ice;
   const PetscScalar *nodes, *a;
   PetscFunctionBeginUser;

@@ -43,7 +43,6 @@ PetscErrorCode CouplingSurfaceHeatSetUp(Coupling &c)
 
 PetscErrorCode CouplingSurfaceHeat(Coupling &c)
 {
-  MpmSolver   &mpm = *c.mpm;
   IceSolver   &ice = *c.ice;
   PetscScalar *a, *sink;
   PetscFunctionBeginUser;
