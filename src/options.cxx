@@ -6,6 +6,7 @@
 namespace burst {
 
 const char *const StepSchemeNames[]    = {"usl", "usf", "musl"};
+const char *const MuslGradientNames[]  = {"remap", "v_new"};
 const char *const FUpdateNames[]       = {"linear", "exponential"};
 const char *const FaceBCNames[]        = {"free", "fixed", "symmetry"};
 const char *const OutsidePolicyNames[] = {"error", "remove"};
@@ -41,6 +42,12 @@ PetscErrorCode ReadRunOptions(Simulation &sim)
   choice = (int)sim.mpm.scheme;
   PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_scheme", "Order of stress update and grid update in a step", StepSchemeNames, 3, &choice, nullptr));
   sim.mpm.scheme = (StepScheme)choice;
+  choice         = (int)sim.mpm.coupled_musl_gradient;
+  PetscCall(OptionsChoice(PetscOptionsObject, "-mpm_coupled_musl_gradient",
+                          "With gas and -mpm_scheme musl: the particles' velocity gradient from the remapped velocity (remap, Sulsky's MUSL) or from v_new, the nodal velocity the gas saw (v_new: stable at the cell a driven solid leaves, but the "
+                          "fire scene's energy budget misses by 3 %; doc/coupling.md)",
+                          MuslGradientNames, 2, &choice, nullptr));
+  sim.mpm.coupled_musl_gradient = (MuslGradient)choice;
   PetscCall(PetscOptionsReal("-mpm_flip_fraction", "Particle velocity update: 1 = FLIP, 0 = PIC, between = blend", "", sim.mpm.flip_fraction, &sim.mpm.flip_fraction, nullptr));
   PetscCall(CheckRange(sim.comm, "-mpm_flip_fraction", sim.mpm.flip_fraction, 0, 1, PETSC_FALSE));
   choice = (int)sim.mpm.transfer;

@@ -19,6 +19,8 @@
 namespace burst {
 
 enum class StepScheme : int { USL = 0, USF = 1, MUSL = 2 };
+// MUSL's velocity gradient in a step with gas (-mpm_coupled_musl_gradient; src/step.cxx).
+enum class MuslGradient : int { Remap = 0, VNew = 1 };
 enum class FUpdate : int { Linear = 0, Exponential = 1 };
 enum class FaceBC : int { Free = 0, Fixed = 1, Symmetry = 2 };
 enum class OutsidePolicy : int { Error = 0, Remove = 1 };
@@ -28,6 +30,7 @@ enum class ContactType : int { NoSlip = 0, Friction = 1 };
 enum class Transfer : int { FlipPic = 0, APIC = 1, XPIC = 2 };
 
 extern const char *const StepSchemeNames[];
+extern const char *const MuslGradientNames[];
 extern const char *const FUpdateNames[];
 extern const char *const FaceBCNames[];
 extern const char *const OutsidePolicyNames[];
@@ -158,13 +161,14 @@ struct MpmSolver {
 
   // Method options (-mpm_*; read in src/options.cxx)
   PetscReal     cfl = 0.4, dt_max = PETSC_MAX_REAL, dt_fixed = 0;
-  StepScheme    scheme        = StepScheme::USL;
-  PetscReal     flip_fraction = 1.0; // 1 = FLIP, 0 = PIC
-  Transfer      transfer      = Transfer::FlipPic;
-  PetscInt      xpic_order    = 2;           // m of XPIC(m); m = 1 is PIC
-  PetscBool     axisymmetric  = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
-  FUpdate       f_update      = FUpdate::Linear;
-  ShapeType     shape         = ShapeType::Linear;
+  StepScheme    scheme                = StepScheme::USL;
+  MuslGradient  coupled_musl_gradient = MuslGradient::Remap; // -mpm_coupled_musl_gradient (src/step.cxx)
+  PetscReal     flip_fraction         = 1.0;                 // 1 = FLIP, 0 = PIC
+  Transfer      transfer              = Transfer::FlipPic;
+  PetscInt      xpic_order            = 2;           // m of XPIC(m); m = 1 is PIC
+  PetscBool     axisymmetric          = PETSC_FALSE; // -dim 2 -axisymmetric: x is the radius r, y the axis z, masses and volumes per radian
+  FUpdate       f_update              = FUpdate::Linear;
+  ShapeType     shape                 = ShapeType::Linear;
   StencilCache  stencil_cache; // this step's particle stencils, shared by the transfers (shape.hpp)
   OutsidePolicy outside              = OutsidePolicy::Error;
   PetscReal     gravity[3]           = {0, 0, 0};
