@@ -91,6 +91,11 @@ PetscErrorCode IceBudgetStepStart(IceSolver &ice)
   const PetscScalar *a;
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(ice.ev_budget, 0, 0, 0, 0));
+  if (ice.gas_energy_after_step == ice.step) { // nothing changed the gases since the last advection summed them
+    ice.gas_energy_mark = ice.gas_energy_after;
+    PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
+    PetscFunctionReturn(PETSC_SUCCESS);
+  }
   PetscCall(VecGetArrayRead(ice.local, &a));
   ice.gas_energy_mark = 0;
   bool            cold[kIceMaxMaterials];
@@ -249,7 +254,7 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
   // IceComputeTotals), plus what left, less the Lagrangian one it advected (the L fields are still
   // there); the conservative remap changes it by round-off, its dual-energy fallbacks and trace resets
   // by what they replace
-  PetscReal change = out;
+  PetscReal change = out, after = 0; // after: the next step's mark (IceBudgetStepStart), summed as it sums it
   bool      cold[kIceMaxMaterials];
   for (PetscInt m = 0; m < ice.ngas; ++m) cold[m] = ice.materials[m].eos->HasColdEnergy();
   PetscCall(VecGetArrayRead(ice.local, &a));
@@ -266,12 +271,16 @@ PetscErrorCode IceBudgetOpenFaces(IceSolver &ice)
           }
           // energy_L: the advected (T_L + e_cold,L/c_v + |u_L|^2/(2 c_v)) with total energy, else e_cold,L/c_v (sources.cxx)
           const PetscReal E_L = total ? eos.cv * c[ice.Offset(m, icef::energy_L)] : eos.cv * (c[ice.Offset(m, icef::temp_L)] + (cold[m] ? c[ice.Offset(m, icef::energy_L)] : 0)) + 0.5 * uL2;
+          const PetscReal E   = V * c[ice.Offset(m, icef::rho)] * (CellInternalEnergy(ice, c, m, cold[m]) + 0.5 * u2);
           change -= V * c[ice.Offset(m, icef::rho_L)] * E_L;
-          change += V * c[ice.Offset(m, icef::rho)] * (CellInternalEnergy(ice, c, m, cold[m]) + 0.5 * u2);
+          change += E;
+          after += E;
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
   ice.advection_energy_change += change;
+  ice.gas_energy_after      = after;
+  ice.gas_energy_after_step = ice.step + 1; // (the callers advance ice.step after this)
   PetscCall(PetscLogEventEnd(ice.ev_budget, 0, 0, 0, 0));
   PetscFunctionReturn(PETSC_SUCCESS);
 }

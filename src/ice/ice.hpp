@@ -218,19 +218,21 @@ struct IceSolver {
   PetscReal         peak_pressure = 0, peak_pressure_time = 0;        // the largest cell pressure seen by the monitor, and when
   PetscReal         dual_energy_fraction = 1e-3;                      // below this share of the total energy the remap takes the internal energy
   IceTotals         initial;
-  IceBoundaryBudget boundary;                        // cumulative (this rank), see IceBoundaryBudget
-  PetscReal         exchange_energy_change      = 0; // J, this rank: the total energy of every material the cell exchange changed (cells' view; IceBudgetAfterExchange)
-  PetscReal         exchange_energy_mark        = 0; // J, this rank: that energy before the exchange (IceBudgetFaces)
-  PetscReal         drag_energy_change          = 0; // J, this rank: of it, the kinetic energy the drag removes that no material gets as heat (exchange.cxx)
-  PetscReal         exchange_fallback_energy    = 0; // J, this rank: of it, what its temperature-form fallbacks changed (exchange.cxx)
-  PetscReal         solid_pressure_work         = 0; // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
-  PetscReal         gas_interface_work          = 0; // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
-  PetscReal         advection_energy_change     = 0; // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
-  PetscReal         fallback_energy_change      = 0; // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
-  PetscReal         solid_cell_energy_transfer  = 0; // J, this rank: what IceSolidCellEnergy moved from the gases of solids' cells to the solids (sources.cxx; IceBudgetFaces sees it in fallback_energy_change, and the monitor adds it back there)
-  PetscReal         trace_energy_change         = 0; // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
-  PetscReal         equilibration_energy_change = 0; // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
-  PetscReal         gas_energy_mark             = 0; // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
+  IceBoundaryBudget boundary;                         // cumulative (this rank), see IceBoundaryBudget
+  PetscReal         exchange_energy_change      = 0;  // J, this rank: the total energy of every material the cell exchange changed (cells' view; IceBudgetAfterExchange)
+  PetscReal         exchange_energy_mark        = 0;  // J, this rank: that energy before the exchange (IceBudgetFaces)
+  PetscReal         drag_energy_change          = 0;  // J, this rank: of it, the kinetic energy the drag removes that no material gets as heat (exchange.cxx)
+  PetscReal         exchange_fallback_energy    = 0;  // J, this rank: of it, what its temperature-form fallbacks changed (exchange.cxx)
+  PetscReal         solid_pressure_work         = 0;  // J, this rank: the kinetic energy the momentum source -theta_s grad p gives the solids' cell materials (IceBudgetFaces)
+  PetscReal         gas_interface_work          = 0;  // J, this rank: the gases' face work booked on one side of an interior face only (a trace on the other; IceBudgetFaces)
+  PetscReal         advection_energy_change     = 0;  // J, this rank: the gases' total energy the advection made (its dual-energy fallbacks and trace resets; IceBudgetOpenFaces)
+  PetscReal         fallback_energy_change      = 0;  // J, this rank: the gases' total energy IceSources made beyond its conservative terms where it books the face work (-p dV fallbacks; IceBudgetFaces)
+  PetscReal         solid_cell_energy_transfer  = 0;  // J, this rank: what IceSolidCellEnergy moved from the gases of solids' cells to the solids (sources.cxx; IceBudgetFaces sees it in fallback_energy_change, and the monitor adds it back there)
+  PetscReal         trace_energy_change         = 0;  // J, this rank: the same where a gas is a trace (its pressure acceleration without work)
+  PetscReal         equilibration_energy_change = 0;  // J, this rank: the gases' total energy the phases before the sources changed (equilibration: e at the new specific volume)
+  PetscReal         gas_energy_mark             = 0;  // J, this rank: the gases' total energy at the step's start (IceBudgetStepStart)
+  PetscReal         gas_energy_after            = 0;  // J, this rank: the same sum after the last advection (IceBudgetOpenFaces) ...
+  PetscInt          gas_energy_after_step       = -1; // ... for the gas step it starts (-1: none), which takes it as its mark
   // The ten energy diagnostics above in one fixed order, for the monitor's reduction and the
   // checkpoint (both keep them in this order).
   static constexpr int                        kEnergyDiagnostics = 10;
