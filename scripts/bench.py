@@ -303,7 +303,7 @@ def compare(args):
             return abs(x - y) / max(abs(x), abs(y), 1e-300)
         # every other value of summary.json (energies, momentum, mass, plastic work, counts, ...), so
         # that "the answers agree" covers more than two energies: 0 means bitwise the same figures
-        timing = {"wall_time_s", "particle_steps_per_second", "particle_steps_per_second_per_core", "bytes_per_particle"}
+        timing = {"wall_time_s", "particle_steps_per_second", "particle_steps_per_second_per_core", "bytes_per_particle", "stress_shared_point_steps"}
         def values(d):
             out = []
             for key, value in sorted(d.items()):

@@ -27,7 +27,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "tests"))
 from verify_checkpoint import h5_arrays  # noqa: E402  (every dataset of an HDF5 file)
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe"]
-WALL_CLOCK = ("wall_time", "per_second", "seconds")  # summary fields that time the machine, not the physics
+WALL_CLOCK = ("wall_time", "per_second", "seconds", "stress_shared")  # summary fields that time the machine, not the physics
 
 SHORT2D = "-grid_cells 32,32 -max_steps 40 -output_interval 20"
 RUNS = [  # name, ranks, options

@@ -109,6 +109,7 @@ static PetscErrorCode SetUp(Simulation &sim)
   sim.mpm.grid.balance_with_gas = gas;
   PetscCheck(sim.help || !sim.mpm.materials.empty() || gas, sim.comm, PETSC_ERR_USER_INPUT, "No materials: give -materials name1,... (solids, each with -<name>_model) and/or -ice_materials name1,... (gases, each with -<name>_eos_type)");
   // 4. Particles, when the scene has solids (-grid_balance sets the node ranges from their work here)
+  if (sim.help) PetscCall(SwarmSetFromOptions(sim.mpm));
   if (!sim.help && !sim.mpm.materials.empty()) {
     PetscCall(CreateSwarm(sim.mpm));
     PetscCall(SeedParticles(sim.mpm));

@@ -628,6 +628,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
   s << PhasesSummary(sim);
   s << "  \"bytes_per_particle\": " << bytes << ",\n";
   s << "  \"wall_time_s\": " << sim.wall_stepping << ",\n";
+  s << "  \"stress_shared_point_steps\": " << sim.mpm.stress_share.point_steps << ",\n";
   s << "  \"particle_steps_per_second\": " << rate << ",\n";
   s << "  \"particle_steps_per_second_per_core\": " << rate / sim.size << "\n";
   s << "}\n";

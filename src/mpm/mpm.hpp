@@ -151,6 +151,31 @@ struct Diagnostics {
   void Checkpoint(CheckpointValues &values); // its part of a checkpoint (src/io/monitor.cxx)
 };
 
+// Sharing the stress update between ranks (src/mpm/stress_share.cxx).
+struct StressShare {
+  PetscBool  enabled     = PETSC_TRUE; // -mpm_stress_share
+  PetscReal  threshold   = 0.1;        // -mpm_stress_share_threshold: share above (1 + this) times the mean count
+  PetscInt   min_points  = 256;        // -mpm_stress_share_min: and at least this many above the mean
+  PetscInt64 point_steps = 0;          // sum over steps of the points updated on another rank than their own (all ranks)
+  PetscReal  overhead    = 0.3;        // a sender's cost of sending a point, as a fraction of updating it (measured, smoothed)
+  struct Transfer {
+    PetscMPIInt peer;
+    PetscInt    count;
+  };
+  struct Chunk { // one message: count points of one material
+    PetscMPIInt peer;
+    PetscInt    material, first, count; // first: into selected (a sender's own messages)
+    PetscInt    index;                  // its place among the messages of its transfer
+  };
+  std::vector<Transfer>              sends, receives;           // this step's plan for this rank
+  std::vector<PetscInt>              selected;                  // the local points sent, message by message
+  std::vector<Chunk>                 chunks, incoming;          // the messages this rank sends, receives
+  std::vector<std::vector<PetscInt>> headers, received_headers; // (material, count) of each message of a transfer
+  std::vector<std::vector<int>>      material_fields;           // per material, the state fields its messages carry
+  std::vector<std::vector<char>>     out, results, in;          // message buffers, kept between steps
+  PetscLogEvent                      ev_share = 0;
+};
+
 struct MpmSolver {
   MPI_Comm    comm = PETSC_COMM_WORLD;
   PetscMPIInt rank = 0, size = 1;
@@ -217,6 +242,7 @@ struct MpmSolver {
   PetscInt64  particle_steps  = 0; // global sum over steps of the particle count
   PetscInt    swarm_bytes     = 0; // bytes of swarm storage per particle (all registered fields)
   Diagnostics diag;
+  StressShare stress_share;
 
   // Events for -log_view
   PetscLogEvent ev_p2g, ev_ghost_sums, ev_grid, ev_g2p, ev_xpic, ev_remap, ev_stress, ev_migrate, ev_dt, ev_loads;
@@ -235,6 +261,7 @@ PetscErrorCode CreateMaterials(MpmSolver &mpm);
 PetscErrorCode ReadLoadCurves(MpmSolver &mpm);
 PetscErrorCode ReadGeometries(MpmSolver &mpm);
 PetscErrorCode CreateSwarm(MpmSolver &mpm);
+PetscErrorCode SwarmSetFromOptions(MpmSolver &mpm); // -mpm_sort_interval, -mpm_stress_share*
 PetscErrorCode SeedParticles(MpmSolver &mpm);
 // Axisymmetric MPM (src/mpm/axisymmetric.cxx): checks the grid (-dim 2, r >= 0, the axis a symmetry
 // face) and the features that do not support it; a no-op without -axisymmetric.
@@ -246,6 +273,10 @@ PetscErrorCode HeatConductionSetUp(MpmSolver &mpm); // reads -mpm_heat_* and -<m
 // the step ends at final_time.
 PetscErrorCode ComputeTimeStep(MpmSolver &mpm, PetscReal final_time);
 PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm);
+PetscErrorCode StressShareSetUp(MpmSolver &mpm); // reads -mpm_stress_share*
+// Runs every material's stress update on f (the local particles), sharing the points of crowded
+// ranks with the others when -mpm_stress_share allows; collective.
+PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f);
 PetscErrorCode ComputeExternalForces(MpmSolver &mpm);
 bool           HasExternalForces(const MpmSolver &mpm); // gravity, a body force or a load curve: external_force may be nonzero
 

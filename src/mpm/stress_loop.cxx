@@ -17,7 +17,7 @@ PetscErrorCode UpdateStress(MpmSolver &mpm)
   PetscCall(PetscLogEventBegin(mpm.ev_stress, 0, 0, 0, 0));
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
   f.time = mpm.time + mpm.dt;
-  for (PetscInt id = 0; id < (PetscInt)mpm.materials.size(); ++id) PetscCall(mpm.materials[id]->UpdateStress(f, id, mpm.dt));
+  PetscCall(UpdateStressShared(mpm, f));
   if (mpm.viscosity[0] > 0 || mpm.viscosity[1] > 0) {
     // Artificial bulk viscosity (models.md 5.5; von Neumann-Richtmyer with a linear term): acts in
     // compression only, enters the internal force as -q I (p2g.cxx), and its work is dissipated:

@@ -9,6 +9,18 @@
 
 namespace burst {
 
+// The swarm's options (also read under -help, where no swarm is made).
+PetscErrorCode SwarmSetFromOptions(MpmSolver &mpm)
+{
+  PetscFunctionBeginUser;
+  PetscOptionsBegin(mpm.comm, "", "Particle order", "Swarm");
+  PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", mpm.sort_interval, &mpm.sort_interval, nullptr));
+  PetscOptionsEnd();
+  PetscCheck(mpm.sort_interval >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -mpm_sort_interval = %" PetscInt_FMT " is out of range: it must be >= 0", mpm.sort_interval);
+  PetscCall(StressShareSetUp(mpm));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
 PetscErrorCode CreateSwarm(MpmSolver &mpm)
 {
   const PetscInt dim = mpm.grid.dim;
@@ -47,10 +59,7 @@ PetscErrorCode CreateSwarm(MpmSolver &mpm)
   if (mpm.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &mpm.swarm_bytes));
   PetscCall(RegisterMaterialState(sw, mpm.materials, &mpm.swarm_bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
-  PetscOptionsBegin(mpm.comm, "", "Particle order", "Swarm");
-  PetscCall(PetscOptionsInt("-mpm_sort_interval", "Steps between sorts of each rank's particles by cell (neighbouring particles then touch neighbouring nodes); 0: never", "", mpm.sort_interval, &mpm.sort_interval, nullptr));
-  PetscOptionsEnd();
-  PetscCheck(mpm.sort_interval >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -mpm_sort_interval = %" PetscInt_FMT " is out of range: it must be >= 0", mpm.sort_interval);
+  PetscCall(SwarmSetFromOptions(mpm));
   if (!mpm.ev_sort) PetscCall(PetscLogEventRegister("MPM_Sort", DM_CLASSID, &mpm.ev_sort));
   // A small buffer: every removal zeroes the whole spare tail (petsc.md 4.3).
   PetscCall(DMSwarmSetLocalSizes(sw, 0, 16));
