@@ -4,7 +4,7 @@
   scripts/study_fragments.py --burst build/burst [--scene options/scenes/cylinder2d_4340.opts]
                              [--cells 80,160,320] [--ppc 2,3,4] [--regularizations none,nonlocal,crack_band]
                              [--cases 80x2,160x2,160x3] [--ranks 2] [--out output/study] [--plot-only]
-                             [--seeds N [--seed0 S]] [--launcher "srun -n {ranks}"] [--jobs K]
+                             [--seeds N [--seed0 S]] [--launcher "srun -n {ranks}"] [--jobs K] [--cost-chart]
 
 For each regularisation (-steel_regularization: none, nonlocal with --length, crack_band with
 --fracture-energy) runs the scene at each cell count (2 x 2 particles per cell) and, at the middle
@@ -21,6 +21,10 @@ draws; one seed: the scene's own) and the study also writes
                            Mott and Grady-Kipp fits of the pooled masses (scripts/fragment_ensemble.py)
   OUT/fragments_ensemble.png  the counts per seed with mean and deviation, and the pooled cumulative
                            mass distributions with both fits and Grady's mean fragment mass
+With --cost-chart it writes
+  OUT/fragments_cost.csv, .png  per case: the count, first-failure time and expansion velocity at
+                           first failure (mean and sample deviation over the seeds) against the
+                           median stepping time of its runs, with the Grady band
 --launcher is the command before burst, {ranks} replaced (default: mpiexec for --ranks > 1); --jobs K
 runs K cases at once (for a launcher that submits to a cluster's queue and waits, e.g. srun).
 --quick runs 80 cells and 2 particles per cell without regularisation only (the suite's test
@@ -44,13 +48,14 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
+import matplotlib.ticker  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import fragment_ensemble  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MPIEXEC = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-x", "OMP_NUM_THREADS=1"]
-FIELDS = ["regularization", "cells", "particles_per_cell", "seed", "cell_size_mm", "particles", "fragments", "fracture_velocity", "grady_shear",
+FIELDS = ["regularization", "cells", "particles_per_cell", "seed", "cell_size_mm", "particles", "fragments", "fracture_velocity", "fracture_time", "grady_shear",
           "grady_tension", "failure_energy_J_per_m", "plastic_work_J_per_m", "intact_mass_fraction", "largest_fragment_kg",
           "energy_balance_error", "wall_time_s", "initial_mass", "fragment_masses_kg", "fragment_sizes_m", "mott_N0", "mott_mu_kg",
           "grady_kipp_N0", "grady_kipp_mu_kg"]
@@ -97,7 +102,7 @@ def run(args, reg, cells, ppc, seed=None, extra=()):
     fit = s.get("fragment_mass_fit") or {}
     mott, gk = fit.get("mott") or {}, fit.get("grady_kipp") or {}
     return dict(regularization=reg, cells=cells, particles_per_cell=ppc, seed="" if seed is None else seed, cell_size_mm=round(1e3 * h, 6), particles=s["particles"],
-                fragments=s["fragment_count"], fracture_velocity=s["fracture_velocity"], grady_shear=s["grady_shear"]["sector"],
+                fragments=s["fragment_count"], fracture_velocity=s["fracture_velocity"], fracture_time=s.get("fracture_time", ""), grady_shear=s["grady_shear"]["sector"],
                 grady_tension=s["grady_tension"]["sector"], failure_energy_J_per_m=s["failure_energy"], plastic_work_J_per_m=s["plastic_work"],
                 intact_mass_fraction=s["intact_mass"] / s["initial_mass"], largest_fragment_kg=s["largest_fragment_mass"],
                 energy_balance_error=s["energy_balance_error"], wall_time_s=s["wall_time_s"], initial_mass=s["initial_mass"],
@@ -186,6 +191,8 @@ def main():
     p.add_argument("--seed0", type=int, default=1, help="the first seed of --seeds")
     p.add_argument("--launcher", default="", help="command before burst, {ranks} replaced, e.g. 'srun -n {ranks}' (default: mpiexec)")
     p.add_argument("--jobs", type=int, default=1, help="runs at once")
+    p.add_argument("--cost-chart", action="store_true", help="also the count, first-failure time and velocity (mean and deviation over the seeds) against "
+                   "the run's cost, per case: OUT/fragments_cost.csv and .png")
     args = p.parse_args()
     regs = ["none"] if args.quick else args.regularizations.split(",")
     if args.cases and not args.quick:
@@ -219,19 +226,93 @@ def main():
         write_table(ensemble_csv, ensemble, fragment_ensemble.ENSEMBLE_FIELDS)
         fragment_ensemble.print_ensemble(ensemble)
         print("wrote", ensemble_csv, "and", ensemble_png)
+    cost_csv, cost_png = os.path.join(args.out, "fragments_cost.csv"), os.path.join(args.out, "fragments_cost.png")
+    if args.cost_chart:
+        chosen = [r for r in rows if args.seeds <= 1 or str(r.get("seed", "")) in {str(x) for x in seeds}]
+        cost = plot_cost(chosen, cost_png, os.path.basename(args.scene).replace(".opts", ""), args.ranks)
+        write_table(cost_csv, cost, COST_FIELDS)
+        print("wrote", cost_csv, "and", cost_png)
     png = os.path.join(args.out, "fragments_study.png")
     plot(rows, args, png)
     print("wrote", table, "and", png)
-    written = (table, png, ensemble_csv, ensemble_png) if args.seeds > 1 else (table, png)
+    written = ((table, png, ensemble_csv, ensemble_png) if args.seeds > 1 else (table, png)) + ((cost_csv, cost_png) if args.cost_chart else ())
     failures = [f"{path} not written" for path in written if not os.path.exists(path) or not os.path.getsize(path)]
     if args.quick:
         failures += quick_checks(rows)
         if args.seeds > 1:
             failures += ensemble_checks(rows)
+        if args.seeds > 1 and args.cost_chart:
+            # the cost chart's statistics against fragment_ensemble's, computed apart
+            for c in cost:
+                e = next(x for x in ensemble if x["regularization"] == c["regularization"] and int(x["cells"]) == c["cells"] and int(x["particles_per_cell"]) == c["particles_per_cell"])
+                worst = max(abs(float(c[a]) - float(e[b])) / max(abs(float(e[b])), 1e-300) for a, b in (("fragments_mean", "fragments_mean"), ("fragments_sd", "fragments_std"),
+                                                                                                         ("fracture_velocity_mean", "fracture_velocity_mean")))
+                ok = worst <= 1e-12 and c["runs"] == len(seeds)
+                print(f"  cost chart, {c['cells']} cells: {c['runs']} runs, count {c['fragments_mean']:.3g} +- {c['fragments_sd']:.3g}, the ensemble's to {worst:.1e} (tol 1e-12): {'OK' if ok else 'FAIL'}")
+                if not ok:
+                    failures.append("the cost chart's statistics differ from the ensemble's")
     if failures:
         print(f"study_fragments: FAIL ({'; '.join(failures)})")
         sys.exit(1)
     print("study_fragments: OK")
+
+
+COST_FIELDS = ["regularization", "cells", "particles_per_cell", "runs", "ranks", "stepping_s_median", "stepping_s_min", "stepping_s_max", "particles",
+               "fragments_mean", "fragments_sd", "grady_shear_mean", "grady_tension_mean", "fracture_time_us_mean", "fracture_time_us_sd",
+               "fracture_velocity_mean", "fracture_velocity_sd"]
+
+
+def mean_sd(values):
+    """Mean and sample standard deviation (0 for a single value)."""
+    n = len(values)
+    if not n:
+        return float("nan"), float("nan")
+    m = sum(values) / n
+    return m, (sum((v - m) ** 2 for v in values) / (n - 1)) ** 0.5 if n > 1 else 0.0
+
+
+def plot_cost(rows, png, title, ranks):
+    """What a user pays for what: per case (regularisation, cells, particles per cell), the fragment
+    count, the first-failure time and the expansion velocity at first failure, each as mean and
+    sample deviation over the seeds, against the median stepping time of the case's runs."""
+    cases = sorted({(r["regularization"], int(r["cells"]), int(r["particles_per_cell"])) for r in rows}, key=lambda c: (c[0], c[2], c[1]))
+    out = []
+    for reg, cells, ppc in cases:
+        sel = [r for r in rows if r["regularization"] == reg and int(r["cells"]) == cells and int(r["particles_per_cell"]) == ppc]
+        walls = sorted(float(r["wall_time_s"]) for r in sel)
+        counts = [float(r["fragments"]) for r in sel]
+        times = [1e6 * float(r["fracture_time"]) for r in sel if r.get("fracture_time") not in ("", None) and float(r["fracture_time"]) > 0]
+        speeds = [float(r["fracture_velocity"]) for r in sel if float(r["fracture_velocity"]) > 0]
+        fm, fs = mean_sd(counts)
+        tm, ts = mean_sd(times)
+        vm, vs = mean_sd(speeds)
+        out.append(dict(regularization=reg, cells=cells, particles_per_cell=ppc, runs=len(sel), ranks=ranks, stepping_s_median=walls[len(walls) // 2],
+                        stepping_s_min=walls[0], stepping_s_max=walls[-1], particles=sel[0]["particles"], fragments_mean=fm, fragments_sd=fs,
+                        grady_shear_mean=mean_sd([float(r["grady_shear"]) for r in sel])[0], grady_tension_mean=mean_sd([float(r["grady_tension"]) for r in sel])[0],
+                        fracture_time_us_mean=tm, fracture_time_us_sd=ts, fracture_velocity_mean=vm, fracture_velocity_sd=vs))
+    fig, axes = plt.subplots(1, 3, figsize=(15, 4.5))
+    for reg in sorted({c["regularization"] for c in out}):
+        sel = [c for c in out if c["regularization"] == reg]
+        x = [c["stepping_s_median"] for c in sel]
+        xerr = [[c["stepping_s_median"] - c["stepping_s_min"] for c in sel], [c["stepping_s_max"] - c["stepping_s_median"] for c in sel]]
+        for ax, key, label in ((axes[0], "fragments", "fragments (mean, sd over seeds)"), (axes[1], "fracture_time_us", "first failure (µs)"),
+                               (axes[2], "fracture_velocity", "expansion velocity at first failure (m/s)")):
+            ax.errorbar(x, [c[key + "_mean"] for c in sel], yerr=[c[key + "_sd"] for c in sel], xerr=xerr, marker="o", capsize=3, label=reg)
+            for c in sel:
+                ax.annotate(f"{c['cells']}" + ("" if c["particles_per_cell"] == 2 else f" {c['particles_per_cell']}x{c['particles_per_cell']}"),
+                            (c["stepping_s_median"], c[key + "_mean"]), textcoords="offset points", xytext=(4, 4), fontsize=8)
+            ax.set_xscale("log")
+            ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+            ax.set_xlabel(f"stepping time on {ranks} rank(s), s (median, range over seeds)")
+            ax.set_ylabel(label)
+        axes[0].vlines(x, [c["grady_shear_mean"] for c in sel], [c["grady_tension_mean"] for c in sel], colors="gray", alpha=0.35, linewidth=8, label=f"Grady band ({reg})")
+    axes[0].legend(fontsize=8)
+    fig.suptitle(f"{title}: what resolution buys, over {max(c['runs'] for c in out)} porosity seeds per case")
+    fig.tight_layout()
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    return out
 
 
 # The bounds of tests/verify.py grady (a fragmenting scene against Grady-Hightower): measured at 80 cells,
