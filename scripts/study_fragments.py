@@ -163,7 +163,7 @@ def plot_mass_distribution(ax, rows, regs, label, fade):
         for j, r in enumerate(r for r in rows if r["regularization"] == reg):
             masses = sorted((float(m) for m in r["fragment_masses_kg"].split(";") if m), reverse=True)
             if masses:
-                ax.step(masses, range(1, len(masses) + 1), where="post", color=f"C{i}", alpha=0.9 - fade * j, label=label(r))
+                ax.step(masses, range(1, len(masses) + 1), where="post", color=f"C{i}", alpha=max(0.15, 0.9 - fade * j), label=label(r))
     ax.set_xscale("log")
     ax.set_xlabel("fragment mass m (kg per m of length)")
     ax.set_ylabel("fragments of mass >= m")

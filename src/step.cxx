@@ -126,15 +126,12 @@ static PetscErrorCode CoupledStep(Simulation &sim)
   PetscCall(IceBudgetAfterExchange(ice));
   PetscCall(CouplingIncrementsToNodes(coupling));
   PetscCall(CouplingChargePressureWork(coupling));
-  if (mpm.scheme == StepScheme::MUSL && mpm.coupled_musl_gradient == MuslGradient::VNew) {
+  if (mpm.scheme == StepScheme::MUSL) {
+    const PetscBool gradient_from_v_new = mpm.coupled_musl_gradient == MuslGradient::VNew ? PETSC_TRUE : PETSC_FALSE;
     PetscCall(RemapMomentum(mpm));
-    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
+    if (gradient_from_v_new) PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_FALSE, PETSC_TRUE})); // L from v_new: the velocity the gas saw
     PetscCall(GridVelocityFromMomentum(mpm));
-    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_FALSE}));
-  } else if (mpm.scheme == StepScheme::MUSL) {
-    PetscCall(RemapMomentum(mpm));
-    PetscCall(GridVelocityFromMomentum(mpm));
-    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_TRUE, PETSC_TRUE}));
+    PetscCall(GridToParticles(mpm, {PETSC_FALSE, PETSC_TRUE, gradient_from_v_new ? PETSC_FALSE : PETSC_TRUE}));
   } else PetscCall(GridToParticles(mpm, {PETSC_TRUE, PETSC_TRUE, PETSC_TRUE}));
   PetscCall(CouplingHeatToParticles(coupling));
   PetscCall(UpdateStress(mpm));

@@ -280,6 +280,9 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
       }
     }
   for (size_t t = 0; t < share.sends.size(); ++t) {
+    // (MPI guarantees tags up to 32767)
+    PetscCheck(kTagResults + (PetscInt)share.headers[t].size() / 2 <= 32767, PETSC_COMM_SELF, PETSC_ERR_SUP, "Stress sharing: %" PetscInt_FMT " messages to one rank exceed the tag range; raise the points per message or use -mpm_stress_share 0",
+               (PetscInt)share.headers[t].size() / 2);
     send_requests.emplace_back();
     PetscCallMPI(MPI_Isend(share.headers[t].data(), (int)share.headers[t].size(), MPIU_INT, share.sends[t].peer, kTagHeader, mpm.comm, &send_requests.back()));
   }
