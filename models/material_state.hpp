@@ -45,14 +45,14 @@ public:
   bool Has(const char name[]) const { return Find(name) != nullptr; }
   // The k-th field (0 <= k < Count()), in the order Add saw them: for code that moves every field
   // of a set of points at once (src/mpm/stress_share.cxx).
-  int  Count() const { return count_; }
-  void Field(int k, const char **name, PetscInt *bs, bool *is_int, void **array) const
-  {
-    *name   = entries_[k].name;
-    *bs     = entries_[k].bs;
-    *is_int = entries_[k].is_int;
-    *array  = entries_[k].array;
-  }
+  struct FieldView {
+    const char *name;
+    PetscInt    bs;
+    bool        is_int;
+    void       *array;
+  };
+  int       Count() const { return count_; }
+  FieldView Field(int k) const { return {entries_[k].name, entries_[k].bs, entries_[k].is_int, entries_[k].array}; }
   // The array of field `name`; stops if no model registered it or its type is not T.
   template <class T>
   PetscErrorCode Get(const char name[], T **array) const

@@ -168,7 +168,7 @@ struct StressShare {
     PetscInt    index;                  // its place among the messages of its transfer
   };
   std::vector<Transfer>              sends, receives;           // this step's plan for this rank
-  std::vector<PetscInt>              selected;                  // the local points sent, message by message
+  std::vector<PetscInt>              spread, selected;          // the local points to send; the same, message by message
   std::vector<Chunk>                 chunks, incoming;          // the messages this rank sends, receives
   std::vector<std::vector<PetscInt>> headers, received_headers; // (material, count) of each message of a transfer
   std::vector<std::vector<int>>      material_fields;           // per material, the state fields its messages carry

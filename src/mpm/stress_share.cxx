@@ -54,11 +54,8 @@ std::vector<int> MaterialStateFields(const MpmSolver &mpm, const MaterialState &
   }
   std::vector<int> fields;
   for (int k = 0; k < state.Count(); ++k) {
-    const char *name;
-    PetscInt    bs;
-    bool        is_int, wanted = false;
-    void       *array;
-    state.Field(k, &name, &bs, &is_int, &array);
+    const char *name   = state.Field(k).name;
+    bool        wanted = false;
     for (size_t a = 0; a < mpm.materials.size() && !wanted; ++a)
       if (group[a])
         for (const StateField &fa : mpm.materials[a]->StateFields()) wanted = wanted || !std::strcmp(fa.name, name);
@@ -78,12 +75,8 @@ void ListBlocks(const MaterialPointFields &f, const std::vector<int> &state_fiel
   blocks.push_back({sizeof(PetscReal), 1, f.wave_speed});
   blocks.push_back({sizeof(PetscReal), 1, f.internal_energy});
   for (int k : state_fields) {
-    const char *name;
-    PetscInt    bs;
-    bool        is_int;
-    void       *array;
-    f.state->Field(k, &name, &bs, &is_int, &array);
-    blocks.push_back({is_int ? sizeof(PetscInt) : sizeof(PetscReal), bs, array});
+    const MaterialState::FieldView field = f.state->Field(k);
+    blocks.push_back({field.is_int ? sizeof(PetscInt) : sizeof(PetscReal), field.bs, field.array});
   }
   *num_outputs = blocks.size();
   blocks.push_back({sizeof(PetscInt), 1, const_cast<PetscInt *>(f.material)});
@@ -141,12 +134,8 @@ PetscErrorCode ViewMessage(const MaterialPointFields &like, const std::vector<in
   g.wave_speed      = reinterpret_cast<PetscReal *>(at(b++));
   g.internal_energy = reinterpret_cast<PetscReal *>(at(b++));
   for (int k : state_fields) {
-    const char *name;
-    PetscInt    bs;
-    bool        is_int;
-    void       *array;
-    like.state->Field(k, &name, &bs, &is_int, &array);
-    PetscCall(state.Add(name, bs, is_int, at(b++)));
+    const MaterialState::FieldView field = like.state->Field(k);
+    PetscCall(state.Add(field.name, field.bs, field.is_int, at(b++)));
   }
   g.state    = &state;
   g.material = reinterpret_cast<const PetscInt *>(at(b++));
@@ -256,9 +245,10 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   PetscInt num_sent = 0;
   for (const auto &t : share.sends) num_sent += t.count;
   // (runs of kRun consecutive points, so that the messages copy runs of memory)
-  constexpr PetscInt    kRun = 32;
-  const PetscInt        runs = (f.n + kRun - 1) / kRun, runs_sent = std::min(runs, (num_sent + kRun - 1) / kRun);
-  std::vector<PetscInt> spread;
+  constexpr PetscInt     kRun = 32;
+  const PetscInt         runs = (f.n + kRun - 1) / kRun, runs_sent = std::min(runs, (num_sent + kRun - 1) / kRun);
+  std::vector<PetscInt> &spread = share.spread;
+  spread.clear();
   for (PetscInt r = 0; r < runs && runs_sent; ++r)
     if ((PetscInt64)(r + 1) * runs_sent / runs > (PetscInt64)r * runs_sent / runs)
       for (PetscInt p = r * kRun; p < std::min(f.n, (r + 1) * kRun); ++p) spread.push_back(p);
