@@ -154,10 +154,14 @@ struct Diagnostics {
 // Sharing the stress update between ranks (src/mpm/stress_share.cxx).
 struct StressShare {
   PetscBool  enabled     = PETSC_TRUE; // -mpm_stress_share
-  PetscReal  threshold   = 0.1;        // -mpm_stress_share_threshold: share above (1 + this) times the mean count
-  PetscInt   min_points  = 256;        // -mpm_stress_share_min: and at least this many above the mean
+  PetscReal  threshold   = 0.1;        // -mpm_stress_share_threshold: share above (1 + this) times the mean work
+  PetscInt   min_points  = 256;        // -mpm_stress_share_min: and at least this many points' work above the mean
   PetscInt64 point_steps = 0;          // sum over steps of the points updated on another rank than their own (all ranks)
   PetscReal  overhead    = 0.3;        // a sender's cost of sending a point, as a fraction of updating it (measured, smoothed)
+  enum class Balance { Time, Count };
+  Balance   balance           = Balance::Time; // -mpm_stress_share_balance: what the plan evens out
+  PetscReal seconds_per_point = 0;             // this rank's update time per point of its own (measured, smoothed; 0 before the first)
+  PetscReal receive_factor    = 1;             // a received point's time here over its sender's time per point, waits included (measured, smoothed)
   struct Transfer {
     PetscMPIInt peer;
     PetscInt    count;

@@ -8,8 +8,10 @@
 // and sends the results back while the sender updates the points it kept. Each point gets the same
 // arithmetic on whichever rank runs it, so a run is bit for bit the run without sharing.
 //
-// Every rank draws the same plan from the particle counts (one MPI_Allgather): the targets are the
-// even shares, and the ranks above their target send to those below, in rank order. A sender sends
+// Every rank draws the same plan (one MPI_Allgather) from each rank's work: its particle count times
+// its measured update time per particle, since the points of one rank may be far cheaper than
+// another's (a rigid anvil's against a copper rod's). The ranks above the level that evens the work
+// out send to those below, in rank order. A sender sends
 // points spread evenly over its local array, so that each share holds its materials in the
 // proportions of the whole. The message of n points is one buffer of field blocks, each 8-byte
 // aligned: first the fields a model writes (stress, temperature, wave speed, internal energy, the
@@ -156,6 +158,14 @@ PetscErrorCode UpdateAllMaterials(MpmSolver &mpm, const MaterialPointFields &f)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// A rank's time per point of its own update, smoothed over steps (the first measurement taken whole).
+void MeasureCost(StressShare &share, PetscLogDouble seconds, PetscInt points)
+{
+  if (points <= 0 || !(seconds > 0)) return;
+  const PetscReal per_point = seconds / points;
+  share.seconds_per_point   = share.seconds_per_point > 0 ? 0.7 * share.seconds_per_point + 0.3 * per_point : per_point;
+}
+
 } // namespace
 
 PetscErrorCode StressShareSetUp(MpmSolver &mpm)
@@ -163,9 +173,13 @@ PetscErrorCode StressShareSetUp(MpmSolver &mpm)
   StressShare &share = mpm.stress_share;
   PetscFunctionBeginUser;
   PetscOptionsBegin(mpm.comm, "", "Sharing the stress update between ranks", "Swarm");
-  PetscCall(PetscOptionsBool("-mpm_stress_share", "Ranks with more particles than their share send the stress update of the surplus to ranks with fewer (bit for bit the same run)", "", share.enabled, &share.enabled, nullptr));
-  PetscCall(PetscOptionsReal("-mpm_stress_share_threshold", "Share only when the most particles on a rank exceed the mean by this fraction (-), >= 0", "", share.threshold, &share.threshold, nullptr));
-  PetscCall(PetscOptionsInt("-mpm_stress_share_min", "Share only when the most particles on a rank exceed the mean by at least this many (particles), >= 0", "", share.min_points, &share.min_points, nullptr));
+  PetscCall(PetscOptionsBool("-mpm_stress_share", "Ranks with more stress-update work than their share send the update of a part of their particles to ranks with less (bit for bit the same run)", "", share.enabled, &share.enabled, nullptr));
+  const char *const balances[] = {"time", "count"};
+  PetscInt          balance    = (PetscInt)share.balance;
+  PetscCall(PetscOptionsEList("-mpm_stress_share_balance", "What the plan evens out: time (each rank's particle count times its measured update time per particle) or count (particles; the plan then follows from the decomposition alone)", "", balances, 2, balances[balance], &balance, nullptr));
+  share.balance = (StressShare::Balance)balance;
+  PetscCall(PetscOptionsReal("-mpm_stress_share_threshold", "Share only when the most loaded rank's work exceeds the mean by this fraction (-), >= 0", "", share.threshold, &share.threshold, nullptr));
+  PetscCall(PetscOptionsInt("-mpm_stress_share_min", "Share only when the most loaded rank's work exceeds the mean by at least that of this many of its particles (particles), >= 0", "", share.min_points, &share.min_points, nullptr));
   PetscOptionsEnd();
   PetscCall(CheckRange(mpm.comm, "-mpm_stress_share_threshold", share.threshold, 0, PETSC_MAX_REAL, PETSC_FALSE));
   PetscCheck(share.min_points >= 0, mpm.comm, PETSC_ERR_USER_INPUT, "Option -mpm_stress_share_min = %" PetscInt_FMT " is out of range: it must be >= 0", share.min_points);
@@ -183,36 +197,54 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   PetscCall(PetscLogEventBegin(share.ev_share, 0, 0, 0, 0));
-  // the plan, the same on every rank, from each rank's count and its sharing overhead: a sender's
-  // cost of packing and unpacking a point it sends, as a fraction of updating one (measured on its
-  // last sharing step)
+  // the plan, the same on every rank, from each rank's count, its measured time per point of its own
+  // update (smoothed; 1 for every rank with -mpm_stress_share_balance count or before every rank
+  // with points has measured it) and its sharing overhead: a sender's cost of packing and unpacking
+  // a point it sends, as a fraction of updating one (measured on its last sharing step)
+  // and, as a receiver, how much longer than their sender a received point takes it (the waits for
+  // the messages included; measured on its last receiving step)
   struct RankLoad {
-    PetscReal count, overhead;
+    PetscReal count, overhead, seconds_per_point, receive_factor;
   };
   std::vector<RankLoad> loads(mpm.size);
-  const RankLoad        mine = {(PetscReal)f.n, share.overhead};
-  PetscCallMPI(MPI_Allgather(&mine, 2, MPIU_REAL, loads.data(), 2, MPIU_REAL, mpm.comm));
-  PetscReal total = 0, most = 0;
-  for (const RankLoad &l : loads) total += l.count, most = std::max(most, l.count);
+  const RankLoad        mine = {(PetscReal)f.n, share.overhead, share.seconds_per_point, share.receive_factor};
+  PetscCallMPI(MPI_Allgather(&mine, 4, MPIU_REAL, loads.data(), 4, MPIU_REAL, mpm.comm));
+  PetscBool by_time = share.balance == StressShare::Balance::Time ? PETSC_TRUE : PETSC_FALSE;
+  for (const RankLoad &l : loads)
+    if (l.count > 0 && !(l.seconds_per_point > 0)) by_time = PETSC_FALSE;
+  // a rank's work in seconds (with unit cost per point: in points); the points sent are spread over
+  // the sender's array, so a point it sends costs its receiver the sender's time per point
+  std::vector<PetscReal> cost(mpm.size), work(mpm.size);
+  PetscReal              total = 0, most = 0;
+  PetscMPIInt            busiest = 0;
+  for (PetscMPIInt r = 0; r < mpm.size; ++r) {
+    cost[r] = by_time ? loads[r].seconds_per_point : 1;
+    work[r] = loads[r].count * cost[r];
+    total += work[r];
+    if (work[r] > most) most = work[r], busiest = r;
+  }
   const PetscReal mean = total / mpm.size;
   share.sends.clear();
   share.receives.clear();
-  if (most > (1 + share.threshold) * mean && most - mean >= share.min_points) {
-    // the level T at which every rank is busy as long: a sender of s points is busy for
-    // count - s + overhead s = T, a receiver for count + received = T; bisection on T
-    auto      sent = [&](PetscMPIInt r, PetscReal level) { return loads[r].count > level ? (loads[r].count - level) / (1 - loads[r].overhead) : 0; };
+  if (most > (1 + share.threshold) * mean && (most - mean) / cost[busiest] >= share.min_points) {
+    // the level T at which every rank is busy as long: a sender of s seconds of its work is busy for
+    // work - (1 - overhead) s = T, a receiver of s for work + receive_factor s = T; bisection on T
+    auto room = [&](PetscMPIInt r, PetscReal level) { return std::max<PetscReal>(0, level - work[r]) / (by_time ? loads[r].receive_factor : 1); };
+    auto sent = [&](PetscMPIInt r, PetscReal level) { return work[r] > level ? std::min(work[r], (work[r] - level) / (1 - loads[r].overhead)) : 0; };
     PetscReal lo = mean, hi = most;
     for (int it = 0; it < 60; ++it) {
       const PetscReal level = (lo + hi) / 2;
-      PetscReal       out = 0, room = 0;
-      for (PetscMPIInt r = 0; r < mpm.size; ++r) out += sent(r, level), room += std::max<PetscReal>(0, level - loads[r].count);
-      if (out > room) lo = level;
+      PetscReal       out = 0, taken = 0;
+      for (PetscMPIInt r = 0; r < mpm.size; ++r) out += sent(r, level), taken += room(r, level);
+      if (out > taken) lo = level;
       else hi = level;
     }
-    std::vector<PetscInt64> surplus(mpm.size);
-    for (PetscMPIInt r = 0; r < mpm.size; ++r) surplus[r] = loads[r].count > hi ? (PetscInt64)std::llround(sent(r, hi)) : -(PetscInt64)std::llround(std::max<PetscReal>(0, hi - loads[r].count));
+    std::vector<PetscReal> surplus(mpm.size); // seconds of the senders' work to send (> 0) or to take (< 0)
+    for (PetscMPIInt r = 0; r < mpm.size; ++r) surplus[r] = work[r] > hi ? sent(r, hi) : -room(r, hi);
+    std::vector<PetscInt64> points_left(mpm.size); // a sender's points not yet given away
+    for (PetscMPIInt r = 0; r < mpm.size; ++r) points_left[r] = (PetscInt64)loads[r].count;
     for (PetscMPIInt s = 0, r = 0; s < mpm.size && r < mpm.size;) {
-      if (surplus[s] <= 0) {
+      if (surplus[s] <= 0 || points_left[s] <= 0) {
         ++s;
         continue;
       }
@@ -220,17 +252,23 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
         ++r;
         continue;
       }
-      const PetscInt64 k = std::min(surplus[s], -surplus[r]);
-      if (s == mpm.rank) share.sends.push_back({r, (PetscInt)k});
-      if (r == mpm.rank) share.receives.push_back({s, (PetscInt)k});
-      share.point_steps += k;
-      surplus[s] -= k;
-      surplus[r] += k;
+      const PetscReal  seconds = std::min(surplus[s], -surplus[r]);
+      const PetscInt64 k       = std::min(points_left[s], (PetscInt64)std::llround(seconds / cost[s]));
+      if (k > 0) {
+        if (s == mpm.rank) share.sends.push_back({r, (PetscInt)k});
+        if (r == mpm.rank) share.receives.push_back({s, (PetscInt)k});
+        share.point_steps += k;
+        points_left[s] -= k;
+      }
+      surplus[s] -= seconds;
+      surplus[r] += seconds;
     }
   }
   if (share.sends.empty() && share.receives.empty()) {
     PetscCall(PetscLogEventEnd(share.ev_share, 0, 0, 0, 0));
+    const PetscLogDouble start = MPI_Wtime();
     PetscCall(UpdateAllMaterials(mpm, f));
+    MeasureCost(share, MPI_Wtime() - start, f.n);
     PetscFunctionReturn(PETSC_SUCCESS);
   }
   if (share.material_fields.empty())
@@ -296,6 +334,7 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   PetscLogDouble overhead_seconds = MPI_Wtime() - pack_start;
 
   // a receiver: the others' points first (their senders wait for them), then its own
+  const PetscLogDouble     receive_start = MPI_Wtime();
   std::vector<MPI_Request> header_requests(share.receives.size()), in_requests, back_requests;
   share.received_headers.resize(share.receives.size());
   for (size_t t = 0; t < share.receives.size(); ++t) {
@@ -332,6 +371,13 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
     PetscCall(mpm.materials[chunk.material]->UpdateStress(g, chunk.material, mpm.dt));
     PetscCallMPI(MPI_Isend(share.in[c].data(), (int)offsets[num_outputs], MPI_BYTE, chunk.peer, kTagResults + chunk.index, mpm.comm, &back_requests[c]));
   }
+  if (by_time && !share.receives.empty()) { // the received points' seconds against their senders'
+    PetscReal senders_seconds = 0;
+    for (const auto &t : share.receives) senders_seconds += t.count * cost[t.peer];
+    const PetscReal factor = (MPI_Wtime() - receive_start) / senders_seconds;
+    if (senders_seconds > 0 && factor > 0) share.receive_factor = 0.7 * share.receive_factor + 0.3 * std::min<PetscReal>(factor, 10);
+    PetscCall(PetscInfo(nullptr, "stress share: received %g s of the senders' work in %g s: factor %g\n", (double)senders_seconds, MPI_Wtime() - receive_start, (double)share.receive_factor));
+  }
   const PetscLogDouble own_start = MPI_Wtime();
   PetscCall(UpdateAllMaterials(mpm, f));
   const PetscLogDouble own_seconds = MPI_Wtime() - own_start;
@@ -352,9 +398,11 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   }
   // a sender's overhead per point sent against its update per point kept, smoothed over steps
   const PetscInt kept = f.n - (PetscInt)share.selected.size();
+  MeasureCost(share, own_seconds, kept);
   if (!share.selected.empty() && kept > 0 && own_seconds > 0) {
     const PetscReal ratio = std::min<PetscReal>(0.8, (overhead_seconds / share.selected.size()) / (own_seconds / kept));
     share.overhead        = 0.7 * share.overhead + 0.3 * ratio;
+    PetscCall(PetscInfo(nullptr, "stress share: sent %zu, kept %" PetscInt_FMT ": overhead %g s, own %g s, ratio %g\n", share.selected.size(), kept, overhead_seconds, own_seconds, (double)((overhead_seconds / share.selected.size()) / (own_seconds / kept))));
   }
   PetscCallMPI(MPI_Waitall((int)send_requests.size(), send_requests.data(), MPI_STATUSES_IGNORE));
   PetscCallMPI(MPI_Waitall((int)back_requests.size(), back_requests.data(), MPI_STATUSES_IGNORE));
