@@ -303,7 +303,7 @@ def plot_cost(rows, png, title, ranks):
                             (c["stepping_s_median"], c[key + "_mean"]), textcoords="offset points", xytext=(4, 4), fontsize=8)
             ax.set_xscale("log")
             ax.xaxis.set_major_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
-            ax.xaxis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # (the decades label the axis; minor labels overlap)
             ax.set_xlabel(f"stepping time on {ranks} rank(s), s (median, range over seeds)")
             ax.set_ylabel(label)
         axes[0].vlines(x, [c["grady_shear_mean"] for c in sel], [c["grady_tension_mean"] for c in sel], colors="gray", alpha=0.35, linewidth=8, label=f"Grady band ({reg})")

@@ -552,12 +552,13 @@ def exploding(args):
                 failures.append("the node ranges did not change")
     if args.fragments:
         n, lo, hi = s["fragment_count"], s["grady_shear"]["sector"], s["grady_tension"]["sector"]
-        # the paper's own count (6-7) lies two above the band at its expansion velocity: a count more
-        # than two outside the band is a change of behaviour, not scatter (measured 5 in [2.9, 4.4])
-        ok = lo - 2 <= n <= hi + 2
-        print(f"  fragments {n} against the Grady-Hightower band [{lo:.2f}, {hi:.2f}] +- 2 (paper: 6-7 on the quarter) {'OK' if ok else 'FAIL'}")
+        # with the crack band the scene's count lies in the band over the porosity seeds (80 cells:
+        # 5.25 +- 0.5 in [4.5, 6.7]; doc/failure.md): a count more than one outside it is a change of
+        # behaviour, not scatter (without a length: 3-5 at 80 cells, 12-14 at 160)
+        ok = lo - 1 <= n <= hi + 1
+        print(f"  fragments {n} against the Grady-Hightower band [{lo:.2f}, {hi:.2f}] +- 1 (paper: 6-7 on the quarter) {'OK' if ok else 'FAIL'}")
         if not ok:
-            failures.append("fragment count outside the Grady band +- 2")
+            failures.append("fragment count outside the Grady band +- 1")
     finish(f"exploding[{args.cells} cells, {args.ranks} rank(s)]", failures)
 
 

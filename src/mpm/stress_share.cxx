@@ -176,7 +176,7 @@ PetscErrorCode StressShareSetUp(MpmSolver &mpm)
   PetscCall(PetscOptionsBool("-mpm_stress_share", "Ranks with more stress-update work than their share send the update of a part of their particles to ranks with less (bit for bit the same run)", "", share.enabled, &share.enabled, nullptr));
   const char *const balances[] = {"time", "count"};
   PetscInt          balance    = (PetscInt)share.balance;
-  PetscCall(PetscOptionsEList("-mpm_stress_share_balance", "What the plan evens out: time (each rank's particle count times its measured update time per particle) or count (particles; the plan then follows from the decomposition alone)", "", balances, 2, balances[balance], &balance, nullptr));
+  PetscCall(PetscOptionsEList("-mpm_stress_share_balance", "What the plan evens out: time (count times measured time per particle) or count (particles: a plan from the decomposition alone)", "", balances, 2, balances[balance], &balance, nullptr));
   share.balance = (StressShare::Balance)balance;
   PetscCall(PetscOptionsReal("-mpm_stress_share_threshold", "Share only when the most loaded rank's work exceeds the mean by this fraction (-), >= 0", "", share.threshold, &share.threshold, nullptr));
   PetscCall(PetscOptionsInt("-mpm_stress_share_min", "Share only when the most loaded rank's work exceeds the mean by at least that of this many of its particles (particles), >= 0", "", share.min_points, &share.min_points, nullptr));
@@ -229,8 +229,8 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   if (most > (1 + share.threshold) * mean && (most - mean) / cost[busiest] >= share.min_points) {
     // the level T at which every rank is busy as long: a sender of s seconds of its work is busy for
     // work - (1 - overhead) s = T, a receiver of s for work + receive_factor s = T; bisection on T
-    auto room = [&](PetscMPIInt r, PetscReal level) { return std::max<PetscReal>(0, level - work[r]) / (by_time ? loads[r].receive_factor : 1); };
-    auto sent = [&](PetscMPIInt r, PetscReal level) { return work[r] > level ? std::min(work[r], (work[r] - level) / (1 - loads[r].overhead)) : 0; };
+    auto      room = [&](PetscMPIInt r, PetscReal level) { return std::max<PetscReal>(0, level - work[r]) / (by_time ? loads[r].receive_factor : 1); };
+    auto      sent = [&](PetscMPIInt r, PetscReal level) { return work[r] > level ? std::min(work[r], (work[r] - level) / (1 - loads[r].overhead)) : 0; };
     PetscReal lo = mean, hi = most;
     for (int it = 0; it < 60; ++it) {
       const PetscReal level = (lo + hi) / 2;
@@ -400,9 +400,9 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   const PetscInt kept = f.n - (PetscInt)share.selected.size();
   MeasureCost(share, own_seconds, kept);
   if (!share.selected.empty() && kept > 0 && own_seconds > 0) {
-    const PetscReal ratio = std::min<PetscReal>(0.8, (overhead_seconds / share.selected.size()) / (own_seconds / kept));
-    share.overhead        = 0.7 * share.overhead + 0.3 * ratio;
-    PetscCall(PetscInfo(nullptr, "stress share: sent %zu, kept %" PetscInt_FMT ": overhead %g s, own %g s, ratio %g\n", share.selected.size(), kept, overhead_seconds, own_seconds, (double)((overhead_seconds / share.selected.size()) / (own_seconds / kept))));
+    const PetscReal ratio = (overhead_seconds / share.selected.size()) / (own_seconds / kept);
+    share.overhead        = 0.7 * share.overhead + 0.3 * std::min<PetscReal>(0.8, ratio);
+    PetscCall(PetscInfo(nullptr, "stress share: sent %zu, kept %" PetscInt_FMT ": overhead %g s, own %g s, ratio %g\n", share.selected.size(), kept, overhead_seconds, own_seconds, (double)ratio));
   }
   PetscCallMPI(MPI_Waitall((int)send_requests.size(), send_requests.data(), MPI_STATUSES_IGNORE));
   PetscCallMPI(MPI_Waitall((int)back_requests.size(), back_requests.data(), MPI_STATUSES_IGNORE));
