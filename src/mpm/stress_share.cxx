@@ -158,12 +158,16 @@ PetscErrorCode UpdateAllMaterials(MpmSolver &mpm, const MaterialPointFields &f)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
+// The plan's measured figures follow the run's drift but not one noisy step: each step's sample moves
+// them by 0.3 of the difference.
+void Smooth(PetscReal &figure, PetscReal sample) { figure = 0.7 * figure + 0.3 * sample; }
+
 // A rank's time per point of its own update, smoothed over steps (the first measurement taken whole).
 void MeasureCost(StressShare &share, PetscLogDouble seconds, PetscInt points)
 {
   if (points <= 0 || !(seconds > 0)) return;
-  const PetscReal per_point = seconds / points;
-  share.seconds_per_point   = share.seconds_per_point > 0 ? 0.7 * share.seconds_per_point + 0.3 * per_point : per_point;
+  if (share.seconds_per_point > 0) Smooth(share.seconds_per_point, seconds / points);
+  else share.seconds_per_point = seconds / points;
 }
 
 } // namespace
@@ -374,9 +378,9 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   if (by_time && !share.receives.empty()) { // the received points' seconds against their senders'
     PetscReal senders_seconds = 0;
     for (const auto &t : share.receives) senders_seconds += t.count * cost[t.peer];
-    const PetscReal factor = (MPI_Wtime() - receive_start) / senders_seconds;
-    if (senders_seconds > 0 && factor > 0) share.receive_factor = 0.7 * share.receive_factor + 0.3 * std::min<PetscReal>(factor, 10);
-    PetscCall(PetscInfo(nullptr, "stress share: received %g s of the senders' work in %g s: factor %g\n", (double)senders_seconds, MPI_Wtime() - receive_start, (double)share.receive_factor));
+    const PetscLogDouble seconds = MPI_Wtime() - receive_start;
+    if (senders_seconds > 0 && seconds > 0) Smooth(share.receive_factor, std::min<PetscReal>(seconds / senders_seconds, 10));
+    PetscCall(PetscInfo(nullptr, "stress share: received %g s of the senders' work in %g s: factor %g\n", (double)senders_seconds, seconds, (double)share.receive_factor));
   }
   const PetscLogDouble own_start = MPI_Wtime();
   PetscCall(UpdateAllMaterials(mpm, f));
@@ -401,7 +405,7 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   MeasureCost(share, own_seconds, kept);
   if (!share.selected.empty() && kept > 0 && own_seconds > 0) {
     const PetscReal ratio = (overhead_seconds / share.selected.size()) / (own_seconds / kept);
-    share.overhead        = 0.7 * share.overhead + 0.3 * std::min<PetscReal>(0.8, ratio);
+    Smooth(share.overhead, std::min<PetscReal>(0.8, ratio));
     PetscCall(PetscInfo(nullptr, "stress share: sent %zu, kept %" PetscInt_FMT ": overhead %g s, own %g s, ratio %g\n", share.selected.size(), kept, overhead_seconds, own_seconds, (double)ratio));
   }
   PetscCallMPI(MPI_Waitall((int)send_requests.size(), send_requests.data(), MPI_STATUSES_IGNORE));
