@@ -225,6 +225,9 @@ TEST(burn, SimpleBurnThresholds)
     {"contrast = 0.2 (interior)", [](BurnInput &i) { i.mass_contrast = 0.2; }, false},
     {"contrast = 0.41", [](BurnInput &i) { i.mass_contrast = 0.41; }, true},
     {"contrast = 1 (lone node)", [](BurnInput &i) { i.mass_contrast = 1; }, false},
+    // no one material above T_th, but the gases together fill > 0.2 of the cell at 900 K
+    {"T_hot = 449 K, gases together at 900 K", [](BurnInput &i) { i.T_hot = 449; i.T_gases = 900; }, true},
+    {"T_hot = 449 K, gases together at 450 K", [](BurnInput &i) { i.T_hot = 449; i.T_gases = 450; }, false},
   };
   for (const Case &c : cases) {
     BurnInput in = base;
@@ -265,6 +268,22 @@ TEST(burn, SimpleBurnCapAndOptions)
   // -T_th 500: 450 < T_hot = 480 < 500 does not ignite
   in.T_hot = 480;
   EXPECT_FALSE(m->Ignites(in));
+}
+
+TEST(burn, SimpleBurnGasesApart)
+{
+  // -burn_simple_gases_together false: each gas alone (Uintah's reading); the gases' mixture
+  // temperature no longer counts
+  ScopedOptions o;
+  o.Set("-pbx_burn_type", "simple_burn");
+  o.Set("-pbx_burn_simple_gases_together", "false");
+  auto      m  = Create("pbx");
+  BurnInput in = BurningCell();
+  in.T_hot     = 449;
+  in.T_gases   = 900;
+  EXPECT_FALSE(m->Ignites(in));
+  in.T_hot = 451;
+  EXPECT_TRUE(m->Ignites(in));
 }
 
 // ---------------------------------------------------------------------------------------------
