@@ -11,7 +11,7 @@
 // Every rank draws the same plan (one MPI_Allgather) from each rank's work: its particle count times
 // its measured update time per particle, since the points of one rank may be far cheaper than
 // another's (a rigid anvil's against a copper rod's). The ranks above the level that evens the work
-// out send to those below, in rank order. A sender sends
+// out send to those below, in rank order (the plan: stress_share_plan.cxx). A sender sends
 // points spread evenly over its local array, so that each share holds its materials in the
 // proportions of the whole. The message of n points is one buffer of field blocks, each 8-byte
 // aligned: first the fields a model writes (stress, temperature, wave speed, internal energy, the
@@ -19,6 +19,7 @@
 // receiver points a MaterialPointFields into the buffer and returns its first part, the outputs.
 #include "mpm/mpm.hpp"
 #include "mpm/material_state.hpp"
+#include "mpm/stress_share_plan.hpp"
 #include "util.hpp"
 #include <algorithm>
 #include <cstring>
@@ -202,71 +203,21 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   }
   PetscCall(PetscLogEventBegin(share.ev_share, 0, 0, 0, 0));
   // the plan, the same on every rank, from each rank's count, its measured time per point of its own
-  // update (smoothed; 1 for every rank with -mpm_stress_share_balance count or before every rank
-  // with points has measured it) and its sharing overhead: a sender's cost of packing and unpacking
-  // a point it sends, as a fraction of updating one (measured on its last sharing step)
-  // and, as a receiver, how much longer than their sender a received point takes it (the waits for
-  // the messages included; measured on its last receiving step)
-  struct RankLoad {
-    PetscReal count, overhead, seconds_per_point, receive_factor;
-  };
-  std::vector<RankLoad> loads(mpm.size);
-  const RankLoad        mine = {(PetscReal)f.n, share.overhead, share.seconds_per_point, share.receive_factor};
+  // update (smoothed; counts alone with -mpm_stress_share_balance count) and its sharing overhead: a
+  // sender's cost of packing and unpacking a point it sends, as a fraction of updating one (measured
+  // on its last sharing step) and, as a receiver, how much longer than their sender a received point
+  // takes it (the waits for the messages included; measured on its last receiving step)
+  std::vector<ShareLoad> loads(mpm.size);
+  const ShareLoad        mine = {(PetscReal)f.n, share.overhead, share.seconds_per_point, share.receive_factor};
+  static_assert(sizeof(ShareLoad) == 4 * sizeof(PetscReal), "ShareLoad travels as 4 reals");
   PetscCallMPI(MPI_Allgather(&mine, 4, MPIU_REAL, loads.data(), 4, MPIU_REAL, mpm.comm));
-  PetscBool by_time = share.balance == StressShare::Balance::Time ? PETSC_TRUE : PETSC_FALSE;
-  for (const RankLoad &l : loads)
-    if (l.count > 0 && !(l.seconds_per_point > 0)) by_time = PETSC_FALSE;
-  // a rank's work in seconds (with unit cost per point: in points); the points sent are spread over
-  // the sender's array, so a point it sends costs its receiver the sender's time per point
-  std::vector<PetscReal> cost(mpm.size), work(mpm.size);
-  PetscReal              total = 0, most = 0;
-  PetscMPIInt            busiest = 0;
-  for (PetscMPIInt r = 0; r < mpm.size; ++r) {
-    cost[r] = by_time ? loads[r].seconds_per_point : 1;
-    work[r] = loads[r].count * cost[r];
-    total += work[r];
-    if (work[r] > most) most = work[r], busiest = r;
-  }
-  const PetscReal mean = total / mpm.size;
   share.sends.clear();
   share.receives.clear();
-  if (most > (1 + share.threshold) * mean && (most - mean) / cost[busiest] >= share.min_points) {
-    // the level T at which every rank is busy as long: a sender of s seconds of its work is busy for
-    // work - (1 - overhead) s = T, a receiver of s for work + receive_factor s = T; bisection on T
-    auto      room = [&](PetscMPIInt r, PetscReal level) { return std::max<PetscReal>(0, level - work[r]) / (by_time ? loads[r].receive_factor : 1); };
-    auto      sent = [&](PetscMPIInt r, PetscReal level) { return work[r] > level ? std::min(work[r], (work[r] - level) / (1 - loads[r].overhead)) : 0; };
-    PetscReal lo = mean, hi = most;
-    for (int it = 0; it < 60; ++it) {
-      const PetscReal level = (lo + hi) / 2;
-      PetscReal       out = 0, taken = 0;
-      for (PetscMPIInt r = 0; r < mpm.size; ++r) out += sent(r, level), taken += room(r, level);
-      if (out > taken) lo = level;
-      else hi = level;
-    }
-    std::vector<PetscReal> surplus(mpm.size); // seconds of the senders' work to send (> 0) or to take (< 0)
-    for (PetscMPIInt r = 0; r < mpm.size; ++r) surplus[r] = work[r] > hi ? sent(r, hi) : -room(r, hi);
-    std::vector<PetscInt64> points_left(mpm.size); // a sender's points not yet given away
-    for (PetscMPIInt r = 0; r < mpm.size; ++r) points_left[r] = (PetscInt64)loads[r].count;
-    for (PetscMPIInt s = 0, r = 0; s < mpm.size && r < mpm.size;) {
-      if (surplus[s] <= 0 || points_left[s] <= 0) {
-        ++s;
-        continue;
-      }
-      if (surplus[r] >= 0) {
-        ++r;
-        continue;
-      }
-      const PetscReal  seconds = std::min(surplus[s], -surplus[r]);
-      const PetscInt64 k       = std::min(points_left[s], (PetscInt64)std::llround(seconds / cost[s]));
-      if (k > 0) {
-        if (s == mpm.rank) share.sends.push_back({r, (PetscInt)k});
-        if (r == mpm.rank) share.receives.push_back({s, (PetscInt)k});
-        share.point_steps += k;
-        points_left[s] -= k;
-      }
-      surplus[s] -= seconds;
-      surplus[r] += seconds;
-    }
+  bool by_time = false;
+  for (const ShareTransfer &t : StressSharePlan(loads, share.balance == StressShare::Balance::Time, share.threshold, share.min_points, &by_time)) {
+    if (t.sender == mpm.rank) share.sends.push_back({t.receiver, (PetscInt)t.count});
+    if (t.receiver == mpm.rank) share.receives.push_back({t.sender, (PetscInt)t.count});
+    share.point_steps += t.count;
   }
   if (share.sends.empty() && share.receives.empty()) {
     PetscCall(PetscLogEventEnd(share.ev_share, 0, 0, 0, 0));
@@ -377,7 +328,7 @@ PetscErrorCode UpdateStressShared(MpmSolver &mpm, const MaterialPointFields &f)
   }
   if (by_time && !share.receives.empty()) { // the received points' seconds against their senders'
     PetscReal senders_seconds = 0;
-    for (const auto &t : share.receives) senders_seconds += t.count * cost[t.peer];
+    for (const auto &t : share.receives) senders_seconds += t.count * loads[t.peer].seconds_per_point;
     const PetscLogDouble seconds = MPI_Wtime() - receive_start;
     if (senders_seconds > 0 && seconds > 0) Smooth(share.receive_factor, std::min<PetscReal>(seconds / senders_seconds, 10));
     PetscCall(PetscInfo(nullptr, "stress share: received %g s of the senders' work in %g s: factor %g\n", (double)senders_seconds, seconds, (double)share.receive_factor));
