@@ -12,6 +12,8 @@ Writes OUTPUT_DIR/fire.png, four panels:
      the charge light);
   4. after ignition: the largest cell pressure and the wall's mean radial velocity (-grady) against
      the time since the mechanics began.
+In 3-D (options/scenes/pool_fire3d.opts) panels 1 and 3 show the mid-length plane z = 0: the gas
+cells of the first layer and the particles within one cell of it.
 Needs numpy, h5py and matplotlib: use Debian's /usr/bin/python3.
 """
 import argparse
@@ -58,12 +60,16 @@ def gas_fields(path):
         return Tgas, cells["pressure"][0]
 
 
-def particles(path):
+def particles(path, z_max=None):
+    """The particles; in 3-D (z_max given) those with z < z_max only."""
     with h5py.File(path, "r") as f:
         g = f["particles"]
         d = {k: g[k][...] for k in ("coordinates", "temperature", "material", "fragment")}
         d["failed"] = g["failed"][...] if "failed" in g else np.zeros(len(d["material"]))
-        return d
+    if z_max is not None and d["coordinates"].shape[1] == 3:
+        keep = d["coordinates"][:, 2] < z_max
+        d = {k: v[keep] for k, v in d.items()}
+    return d
 
 
 def main():
@@ -75,6 +81,10 @@ def main():
         summary = json.load(f)
     phases = summary.get("phases", {})
     lower = summary.get("grid_lower")
+    # 3-D: the plane z = 0 (the first gas layer; the particles within one cell of it)
+    z_max = None
+    if summary.get("dim", 2) == 3:
+        z_max = (summary["grid_upper"][2] - summary["grid_lower"][2]) / summary["cells"][2]
     with open(os.path.join(args.out, "monitor.csv")) as f:
         rows = list(csv.DictReader(f))
     time = np.array([float(r["time"]) for r in rows])
@@ -100,7 +110,7 @@ def main():
     Tgas, _ = gas_fields(g_heat)
     ny, nx = Tgas.shape
     x0, y0 = (lower or [0, -0.1])[:2]
-    p = particles(p_heat)
+    p = particles(p_heat, z_max)
     xs = p["coordinates"][:, 0]
     ys = p["coordinates"][:, 1]
     # the cell size from the domain in the summary, else from the particles' extent
@@ -138,7 +148,7 @@ def main():
     ax[1].grid(alpha=0.3)
     # 3. the end
     _, pres = gas_fields(gas_files[-1])
-    p = particles(part_files[-1])
+    p = particles(part_files[-1], z_max)
     im = ax[2].imshow(np.log10(np.maximum(pres, 1e3)), origin="lower", extent=extent, cmap="Blues")
     mat, failed, frag = p["material"].ravel(), p["failed"].ravel() > 0, p["fragment"].ravel()
     charge = mat == 1
