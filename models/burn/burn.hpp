@@ -35,7 +35,7 @@ struct BurnInput {
   PetscReal mass_contrast = 0; // (M_max - M_min)/M_max of the nodal reactant mass over the cell's nodes, in [0, 1]
   PetscReal T_hot         = 0; // K: Simple Burn: the hottest material in the cell with volume fraction > 0.2;
                                //    Steady Burn: the same over the 3x3x3 neighbours holding <= BoundaryParticles particles
-  PetscReal T_gases       = 0; // K: the cell's gases taken together, if their volume fractions sum to > 0.2: their
+  PetscReal T_gases = 0;       // K: the cell's gases taken together, if their volume fractions sum to > 0.2: their
                                //    mixture temperature sum(m c_v T)/sum(m c_v); else 0 (Simple Burn)
   PetscInt n_particles = 1;    // reactant particles in the cell (Steady Burn needs >= 1)
 };

@@ -22,13 +22,13 @@ namespace burst {
 
 class SimpleBurn final : public BurnModel {
 public:
-  PetscReal A_b      = 75.3;   // kg/(m^2 s), rate at p = p_ref
-  PetscReal p_ref    = 101325; // Pa
-  PetscReal n        = 0.778;  // pressure exponent (-)
-  PetscReal Q        = 2.0e6;  // J/kg
-  PetscReal T_th     = 450;    // K
-  PetscReal p_th     = 5e4;    // Pa
-  PetscReal contrast = 0.4;    // lower bound of (M_max - M_min)/M_max (-)
+  PetscReal A_b            = 75.3;       // kg/(m^2 s), rate at p = p_ref
+  PetscReal p_ref          = 101325;     // Pa
+  PetscReal n              = 0.778;      // pressure exponent (-)
+  PetscReal Q              = 2.0e6;      // J/kg
+  PetscReal T_th           = 450;        // K
+  PetscReal p_th           = 5e4;        // Pa
+  PetscReal contrast       = 0.4;        // lower bound of (M_max - M_min)/M_max (-)
   PetscBool gases_together = PETSC_TRUE; // the cell's gases as one material in the T_hot test
 
   bool Ignites(const BurnInput &in) const override

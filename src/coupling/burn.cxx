@@ -173,7 +173,6 @@ static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *
     gas_heat += capacity * cell[ice.Offset(g, icef::temp)];
     gas_capacity += capacity;
   }
-  in->T_gases = gas_theta > 0.2 && gas_capacity > 0 ? gas_heat / gas_capacity : 0;
   const PetscInt  m = c.first + s, g = c.product[s];
   const PetscReal M = cell[ice.Offset(m, icef::rho)] * V;
   // nodal mass of the reactant around the cell: contrast and gradient (ice.md 3.1). A node on a
@@ -201,6 +200,7 @@ static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *
   if (Mmin < 1e-9 * Mmax) Mmin = 0;
   in->mass_contrast = Mmax > 0 ? (Mmax - Mmin) / Mmax : 0;
   in->T_hot         = T_hot;
+  in->T_gases       = gas_theta > 0.2 && gas_capacity > 0 ? gas_heat / gas_capacity : 0;
   in->n_particles   = M > 2 * in->M_tiny ? 1 : 0;
 }
 

@@ -226,8 +226,18 @@ TEST(burn, SimpleBurnThresholds)
     {"contrast = 0.41", [](BurnInput &i) { i.mass_contrast = 0.41; }, true},
     {"contrast = 1 (lone node)", [](BurnInput &i) { i.mass_contrast = 1; }, false},
     // no one material above T_th, but the gases together fill > 0.2 of the cell at 900 K
-    {"T_hot = 449 K, gases together at 900 K", [](BurnInput &i) { i.T_hot = 449; i.T_gases = 900; }, true},
-    {"T_hot = 449 K, gases together at 450 K", [](BurnInput &i) { i.T_hot = 449; i.T_gases = 450; }, false},
+    {"T_hot = 449 K, gases together at 900 K",
+     [](BurnInput &i) {
+       i.T_hot   = 449;
+       i.T_gases = 900;
+     },
+     true},
+    {"T_hot = 449 K, gases together at 450 K",
+     [](BurnInput &i) {
+       i.T_hot   = 449;
+       i.T_gases = 450;
+     },
+     false},
   };
   for (const Case &c : cases) {
     BurnInput in = base;
