@@ -166,10 +166,10 @@ static void CellBurnInput(Coupling &c, const PetscScalar *a, const PetscScalar *
     if (cell[ice.Offset(m, icef::theta)] > 0.2) T_hot = PetscMax(T_hot, cell[ice.Offset(m, icef::temp)]);
   // the gases together: the products that a burning surface puts into air share the air's room,
   // and neither alone may fill a fifth of the cell where together they do (doc/fire.md, 3-D)
-  PetscReal gas_theta = 0, gas_heat = 0, gas_capacity = 0;
+  const PetscReal gas_theta = GasRoom(ice, a, ice.LocalIndex(i, j, k));
+  PetscReal       gas_heat = 0, gas_capacity = 0;
   for (PetscInt g = 0; g < ice.ngas; ++g) {
     const PetscReal capacity = cell[ice.Offset(g, icef::rho)] * ice.materials[g].eos->cv;
-    gas_theta += cell[ice.Offset(g, icef::theta)];
     gas_heat += capacity * cell[ice.Offset(g, icef::temp)];
     gas_capacity += capacity;
   }
@@ -230,8 +230,9 @@ PetscErrorCode CouplingIgnitingCells(Coupling &c, PetscInt64 *count, PetscReal w
           const bool ignites = c.burn[s]->Ignites(in);
           if (ignites) local += 1;
           // the closest to igniting: the hottest reactant-bearing cell that the criterion sees
-          if (in.mass_contrast > 0 && PetscMax(in.T_hot, in.T_gases) > hottest.value) {
-            hottest.value         = PetscMax(in.T_hot, in.T_gases);
+          const PetscReal hot = PetscMax(in.T_hot, in.T_gases);
+          if (in.mass_contrast > 0 && hot > hottest.value) {
+            hottest.value         = hot;
             const PetscInt ijk[3] = {i, j, k};
             for (PetscInt d = 0; d < ice.dim; ++d) at[d] = ice.lower[d] + (ijk[d] + 0.5) * ice.h[d];
           }
