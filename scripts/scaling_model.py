@@ -102,6 +102,7 @@ def dofs(scene):
         "phi": ns,  # da_phi (burn.cxx)
         "impulse": nfield * d,  # da_impulse (coupling.cxx)
         "work": 1,  # da_work
+        "spread": 2,  # da_spread (coupling.cxx)
         "state": nmat * 15 + 4,  # ICE stride: kMatFields per material + kCellFields (ice.hpp)
         "source": 5 * nmat + ns,  # da_source (burn.cxx)
         "dv": ns * 3,  # da_dv (coupling.cxx)
@@ -112,6 +113,7 @@ def dofs(scene):
 # hold it). "node" grids have the interpolator's ghost width, "cell" grids width 2 (ice/setup.cxx).
 # Cpl_PressureWork is logged inside Cpl_PressureToPart (the ambient impulse) and on its own;
 # MPM_GhostSums inside MPM_P2G and MPM_Remap; ICE_Ghosts inside the ICE and coupling phases.
+SPREAD_SWEEPS = 4  # -coupling_pressure_work_spread's default (coupling_impl.hpp)
 EXCHANGES = [
     ("P2G ghost sums (mass, momentum)", "node", "node", ["MPM_P2G", "MPM_GhostSums"]),
     ("coupling mass L2G add", "node", "mass", ["Cpl_Project"]),
@@ -129,6 +131,9 @@ EXCHANGES = [
     ("ICE ghosts in exchange", "cell", "state", ["ICE_Exchange", "ICE_Ghosts"]),
     ("grid velocity G2L", "node", "velocity", ["Cpl_IncrementsToNode"]),
     ("increments G2L", "node", "inc", ["Cpl_IncrementsToNode"]),
+    ("pressure work spread: open fraction and gas energy G2L", "node", "spread", ["Cpl_PressureWork"]),
+    ("pressure work spread: reach G2L", "node", "work", ["Cpl_PressureWork"]),
+    *[(f"pressure work spread: sweep {k + 1} G2L", "node", "work", ["Cpl_PressureWork"]) for k in range(SPREAD_SWEEPS)],
     ("pressure work G2L", "node", "work", ["Cpl_PressureWork"]),
     ("solid increments L2L", "cell", "dv", ["Cpl_PressureWork"]),
     ("ICE ghosts after pressure work", "cell", "state", ["Cpl_PressureWork", "ICE_Ghosts"]),

@@ -60,9 +60,25 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
   PetscCall(PetscOptionsReal("-coupling_surface_heat_transfer", "Convective heat transfer coefficient h between the solids' surfaces and the gas two cells out (W/(m^2 K)), >= 0; 0: off (src/coupling/surface_heat.cxx)", "", c->surface_h,
                              &c->surface_h, nullptr));
   PetscCall(CheckRange(mpm.comm, "-coupling_surface_heat_transfer", c->surface_h, 0, 1e8, PETSC_FALSE));
-  PetscCall(PetscOptionsBool("-coupling_charge_pressure_work",
-                             "The gases pay the work their pressure does on the solids (taken at the nodes, shared by the heat capacity of the gases around each; total energy conserved); 0: the solids gain it from nothing", "",
-                             c->charge_pressure_work, &c->charge_pressure_work, nullptr));
+  PetscCall(
+    PetscOptionsBool("-coupling_charge_pressure_work",
+                     "The gases pay the work their pressure does on the solids (taken at the nodes, moved toward the gas and shared as -coupling_pressure_work_spread and _share say; total energy conserved); 0: the solids gain it from nothing", "",
+                     c->charge_pressure_work, &c->charge_pressure_work, nullptr));
+  PetscCall(PetscOptionsEnum("-coupling_pressure_work_share", "Who among the gases around a node pays its pressure work: energy (in proportion to M c_v T: one temperature factor for all) or heat_capacity (M c_v: one temperature difference)", "",
+                             kWorkShareNames, (PetscEnum)c->work_share, (PetscEnum *)&c->work_share, nullptr));
+  PetscCall(PetscOptionsInt("-coupling_pressure_work_spread",
+                            "Sweeps that move the pressure work of nodes in or at a solid toward its neighbours, in proportion to the gas energy around them (p times open gas fraction), so the residue of the two discretisations of the gas pressure "
+                            "is paid where the gas is; >= 0; 0: each node's work is paid by the gases of its own cells",
+                            "", c->work_spread_sweeps, &c->work_spread_sweeps, nullptr));
+  PetscCall(CheckRange(mpm.comm, "-coupling_pressure_work_spread", (PetscReal)c->work_spread_sweeps, 0, 64, PETSC_FALSE));
+  PetscCall(PetscOptionsReal("-coupling_pressure_work_open_fraction",
+                             "Each sweep, a node passes on 1 - min(1, f / this) of its pressure work, f the mean open gas fraction of its cells (a gas is open in proportion to its own pressure over the cell's), in (0, 1]", "", c->work_open_fraction,
+                             &c->work_open_fraction, nullptr));
+  PetscCall(CheckRange(mpm.comm, "-coupling_pressure_work_open_fraction", c->work_open_fraction, 0, 1, PETSC_TRUE));
+  PetscCall(PetscOptionsReal("-coupling_pressure_work_closed_fraction",
+                             "Mean open gas fraction of a node's cells below which the pressure work left there after the sweeps is held (counted in the budget) rather than paid by gas pockets, in [0, 1); 0: always paid", "", c->work_closed_fraction,
+                             &c->work_closed_fraction, nullptr));
+  PetscCall(CheckRange(mpm.comm, "-coupling_pressure_work_closed_fraction", c->work_closed_fraction, 0, 1, PETSC_FALSE, PETSC_TRUE));
   PetscOptionsEnd();
   c->solid_of.assign(mpm.materials.size(), -1);
   for (size_t m = 0; m < mpm.materials.size(); ++m) {
@@ -498,6 +514,7 @@ PetscErrorCode CouplingSetUp(Coupling &c, IceSolver &ice)
     PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, 1, &c.da_work));
     PetscCall(DMCreateGlobalVector(c.da_work, &c.work_global));
     PetscCall(DMCreateLocalVector(c.da_work, &c.work_local));
+    PetscCall(DMDACreateCompatibleDMDA(mpm.grid.da_nodes, 2, &c.da_spread));
   }
   PetscFunctionReturn(PETSC_SUCCESS);
 }

@@ -6,6 +6,10 @@
 
 namespace burst {
 
+// Who among the gases around a node pays its pressure work (pressure_work.cxx)
+enum class WorkShare : int { Energy = 0, HeatCapacity = 1 };
+inline constexpr const char *kWorkShareNames[] = {"energy", "heat_capacity", "WorkShare", "", nullptr};
+
 struct Coupling {
   MpmSolver             *mpm    = nullptr; // the two solvers it couples (not owned)
   IceSolver             *ice    = nullptr;
@@ -41,13 +45,19 @@ struct Coupling {
   Vec                                     source_global = nullptr, source_local = nullptr;
   // The work of the gas pressure on the solids (pressure_work.cxx): charged to the gases or not,
   // and the nodes that gather the particles' share of it.
-  PetscBool charge_pressure_work = PETSC_TRUE;
-  DM        da_impulse           = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
-  Vec       impulse_global = nullptr, impulse_local = nullptr;
-  DM        da_dv    = nullptr; // cells: ice.solid_pressure_dv (dv_owned wraps it) and its ghost cells (dv_local)
-  Vec       dv_owned = nullptr, dv_local = nullptr;
-  DM        da_work     = nullptr; // nodes: the work of the gas on the solids there
-  Vec       work_global = nullptr, work_local = nullptr;
+  PetscBool              charge_pressure_work = PETSC_TRUE;
+  DM                     da_impulse           = nullptr; // nodes: per velocity field, the impulse of the particles' (p - p_ref) I (dim)
+  Vec                    impulse_global = nullptr, impulse_local = nullptr;
+  DM                     da_dv    = nullptr; // cells: ice.solid_pressure_dv (dv_owned wraps it) and its ghost cells (dv_local)
+  Vec                    dv_owned = nullptr, dv_local = nullptr;
+  DM                     da_work     = nullptr; // nodes: the work of the gas on the solids there
+  DM                     da_spread   = nullptr; // nodes: the open gas fraction and gas energy scale of the cells around (SpreadWorkToTheGas)
+  Vec                    work_global = nullptr, work_local = nullptr;
+  WorkShare              work_share           = WorkShare::Energy;
+  PetscInt               work_spread_sweeps   = 4;    // sweeps that move a node's work toward the gas that can pay it
+  PetscReal              work_open_fraction   = 1;    // a node passes on 1 - (its cells' mean open gas fraction) / this of its work
+  PetscReal              work_closed_fraction = 0.05; // below this mean open gas fraction a node's work, left after the sweeps, is held
+  std::vector<PetscReal> cell_bill;                   // per owned cell, reused every step: the work its gases pay
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
   // Convective heat transfer at the solids' surfaces (surface_heat.cxx)
   PetscReal     surface_h      = 0;       // W/(m^2 K); 0: off
@@ -76,6 +86,7 @@ struct Coupling {
     VecDestroy(&work_global);
     VecDestroy(&work_local);
     DMDestroy(&da_work);
+    DMDestroy(&da_spread);
     VecDestroy(&dv_owned);
     VecDestroy(&dv_local);
     DMDestroy(&da_dv);

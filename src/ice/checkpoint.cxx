@@ -21,6 +21,8 @@ void IceCheckpointValues(IceSolver &ice, CheckpointValues &values)
   values.Global("initial_kinetic_energy", &ice.initial.kinetic_energy);
   values.Global("peak_pressure", &ice.peak_pressure);
   values.Global("peak_pressure_time", &ice.peak_pressure_time);
+  values.Global("peak_temperature", &ice.peak_temperature);
+  values.Global("peak_temperature_time", &ice.peak_temperature_time);
   values.PerRank("energy_fallbacks", &ice.energy_fallbacks);
   values.PerRank("energy_fallbacks_remap", &ice.energy_fallbacks_remap);
   values.PerRank("energy_fallbacks_exchange", &ice.energy_fallbacks_exchange);

@@ -10,7 +10,7 @@ namespace burst {
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
 {
   PetscScalar *a;
-  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6], pmax = 0;
+  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6], pmax = 0, Tmax = 0;
   PetscFunctionBeginUser;
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscReal V = ice.CellVolume();
@@ -23,6 +23,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
           const PetscReal M  = c[ice.Offset(m, icef::rho)] * V;
           PetscReal       u2 = 0;
           local[0] += M;
+          if (c[ice.Offset(m, icef::theta)] >= ice.trace_fraction) Tmax = PetscMax(Tmax, c[ice.Offset(m, icef::temp)]);
           for (PetscInt d = 0; d < ice.dim; ++d) {
             const PetscReal u = c[ice.Offset(m, icef::vel + d)];
             local[1 + d] += M * u;
@@ -36,6 +37,7 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCallMPI(MPI_Allreduce(local, global, 6, MPIU_REAL, MPI_SUM, ice.comm));
   PetscCallMPI(MPI_Allreduce(&pmax, &t.max_pressure, 1, MPIU_REAL, MPI_MAX, ice.comm));
+  PetscCallMPI(MPI_Allreduce(&Tmax, &t.max_temperature, 1, MPIU_REAL, MPI_MAX, ice.comm));
   t.mass = global[0];
   for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
   t.internal_energy = global[4];

@@ -103,7 +103,8 @@ struct IceFaceBC {
 
 struct IceTotals {
   PetscReal mass = 0, momentum[3] = {0, 0, 0}, internal_energy = 0, kinetic_energy = 0;
-  PetscReal max_pressure = 0; // Pa, over the cells
+  PetscReal max_pressure    = 0; // Pa, over the cells
+  PetscReal max_temperature = 0; // K, the hottest gas over the cells (traces excluded)
 };
 
 // What crossed the domain faces since the start, this rank's faces (the budgets of monitor.csv,
@@ -216,6 +217,7 @@ struct IceSolver {
   PetscInt64        energy_fallbacks_exchange                   = 0;  // of those, the exchange's (exchange.cxx: a total-energy temperature the drag heat left negative)
   PetscInt64        energy_fallbacks_class[kIceFallbackClasses] = {}; // of all, by the class of their cell (IceCountFallback)
   PetscReal         peak_pressure = 0, peak_pressure_time = 0;        // the largest cell pressure seen by the monitor, and when
+  PetscReal         peak_temperature = 0, peak_temperature_time = 0;  // the hottest gas (traces excluded) seen by the monitor, and when
   PetscReal         dual_energy_fraction = 1e-3;                      // below this share of the total energy the remap takes the internal energy
   IceTotals         initial;
   IceBoundaryBudget boundary;                         // cumulative (this rank), see IceBoundaryBudget

@@ -355,7 +355,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
     std::fprintf(csv, "step,time,dt,kinetic,internal,external_work,removed,total,balance_error,momentum_x,momentum_y,momentum_z,mass,particles,failure_energy,plastic_work,heat,viscous_work,stored_elastic,unaccounted");
     if (sim.analytic) std::fprintf(csv, ",displacement_error_rms,displacement_error_max");
     if (sim.output.track_pid >= 0) std::fprintf(csv, ",track_x,track_y,track_z,track_ux,track_uy,track_uz,track_sxx,track_syy,track_szz");
-    if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure");
+    if (sim.ice) std::fprintf(csv, ",gas_mass,gas_momentum_x,gas_momentum_y,gas_momentum_z,gas_internal_energy,gas_kinetic_energy,gas_total_energy,ice_ksp_iterations,ice_outer_iterations,gas_max_pressure,gas_max_temperature");
     if (sim.ice) // the budgets (ComputeBudget); balance_error is the energy budget's
       std::fprintf(csv,
                    ",open_face_mass,removed_particle_mass,mass_budget_error"
@@ -412,6 +412,10 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     sim.ice->peak_pressure      = gas.max_pressure;
     sim.ice->peak_pressure_time = sim.time;
   }
+  if (sim.ice && gas.max_temperature > sim.ice->peak_temperature) {
+    sim.ice->peak_temperature      = gas.max_temperature;
+    sim.ice->peak_temperature_time = sim.time;
+  }
   PetscBool expansion          = PETSC_FALSE;
   PetscReal expansion_velocity = 0;
   if (sim.HasParticles()) PetscCall(FragmentsExpansionVelocity(sim.mpm, &expansion, &expansion_velocity));
@@ -434,7 +438,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
     if (sim.ice)
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%.16e,%d,%d", (double)gas.mass, (double)gas.momentum[0], (double)gas.momentum[1], (double)gas.momentum[2], (double)gas.internal_energy, (double)gas.kinetic_energy,
                    (double)(gas.internal_energy + gas.kinetic_energy), (int)sim.ice->ksp_iterations, (int)sim.ice->outer_iterations);
-    if (sim.ice) std::fprintf(csv, ",%.12e", (double)gas.max_pressure);
+    if (sim.ice) std::fprintf(csv, ",%.12e,%.12e", (double)gas.max_pressure, (double)gas.max_temperature);
     if (sim.ice) {
       std::fprintf(csv, ",%.16e,%.16e,%.6e", (double)b.open_mass, (double)b.removed_mass, (double)b.mass_error);
       for (const PetscReal *v : {b.open_momentum, b.face_impulse, b.bc_impulse, b.removed_momentum, b.momentum_residual})
@@ -564,7 +568,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"internal_energy\": " << gas.internal_energy << ", \"kinetic_energy\": " << gas.kinetic_energy << ", \"total_energy\": " << e << ", \"total_energy_change\": " << (e - e0) / e0;
     s << ", \"pressure_solver\": \"" << IcePressureSolverNames[(int)sim.ice->pressure_solver] << "\", \"ksp_iterations_per_solve\": " << (sim.ice->pressure_solves ? (PetscReal)sim.ice->ksp_iterations_total / sim.ice->pressure_solves : 0.0);
     const PetscReal cells = (PetscReal)sim.mpm.grid.cells[0] * sim.mpm.grid.cells[1] * (sim.mpm.grid.dim == 3 ? sim.mpm.grid.cells[2] : 1);
-    s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time;
+    s << ", \"peak_pressure\": " << sim.ice->peak_pressure << ", \"peak_pressure_time\": " << sim.ice->peak_pressure_time << ", \"peak_temperature\": " << sim.ice->peak_temperature << ", \"peak_temperature_time\": " << sim.ice->peak_temperature_time;
     s << ", \"energy_fallbacks\": " << fallbacks << ", \"energy_fallbacks_remap\": " << fallbacks_remap << ", \"energy_fallbacks_exchange\": " << fallbacks_exchange << ", \"energy_fallbacks_by_class\": {";
     for (int k = 0; k < kIceFallbackClasses; ++k) s << (k ? ", " : "") << "\"" << IceFallbackClassNames[k] << "\": " << fallbacks_class[k];
     s << "}, \"burnt_mass\": " << burnt_mass << ", \"burnt_out_particles\": " << burnt_particles << ", \"surface_heat_to_solids\": " << surface_heat;
