@@ -104,8 +104,8 @@ static PetscReal OpenGasFraction(const IceSolver &ice, const PetscScalar *cell)
 // accuracy of their two discretisations: across a wall that holds the charge's pressure back, the
 // nodes inside and on its faces take residues that sum to about nothing over the wall. Paid where
 // they fall, the inside's went to the gas pockets of the steel's cells and the outer face's to the
-// thin air outside, and heated them to 1e5-1e8 K in the fire scene's burst, where they set the time
-// step (2e-8 s against 1.1e-7 s). Each sweep, a node passes on the part of its work its cells' open
+// thin air outside, and heated them to 1e5-1e9 K in the fire scene's burst, where they set the time
+// step (a median 3e-8 s against 1.2e-7 s). Each sweep, a node passes on the part of its work its cells' open
 // gas fraction does not hold (-coupling_pressure_work_open_fraction) to its face neighbours, in
 // proportion to the gas energy around them (pressure times open fraction): the total is unchanged,
 // and over a wall's thickness in sweeps the residues meet and what is left goes to the gas with the
