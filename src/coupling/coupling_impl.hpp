@@ -58,6 +58,7 @@ struct Coupling {
   PetscReal              work_open_fraction   = 1;    // a node passes on 1 - (its cells' mean open gas fraction) / this of its work
   PetscReal              work_closed_fraction = 0.05; // below this mean open gas fraction a node's work, left after the sweeps, is held
   std::vector<PetscReal> cell_bill;                   // per owned cell, reused every step: the work its gases pay
+  std::vector<PetscReal> cell_open;                   // per local cell, reused every step: its open gas fraction and gas energy scale
   // -log_view events, one per phase of the coupled step (ice.md 1.2)
   // Convective heat transfer at the solids' surfaces (surface_heat.cxx)
   PetscReal     surface_h      = 0;       // W/(m^2 K); 0: off

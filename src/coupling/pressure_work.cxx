@@ -127,8 +127,18 @@ static PetscErrorCode SpreadWorkToTheGas(Coupling &c)
   PetscCall(DMGetLocalVector(c.da_spread, &gas_local));
   PetscCall(DMGetGlobalVector(c.da_work, &reach_global));
   PetscCall(DMGetLocalVector(c.da_work, &reach_local));
-  // per node, its cells' mean open gas fraction [0] and mean gas energy scale [1], p times that fraction
+  // per local cell (ghosts too), its open gas fraction and gas energy scale, p times that fraction;
+  // then per node, their means over its cells
   PetscCall(IceGetLocalArray(ice, &cells));
+  const PetscInt ncells = ice.gxm[0] * ice.gxm[1] * ice.gxm[2];
+  c.cell_open.resize(2 * ncells);
+  for (PetscInt idx = 0; idx < ncells; ++idx) {
+    const PetscScalar *cell  = cells + idx * ice.stride;
+    const PetscReal    open  = OpenGasFraction(ice, cell);
+    c.cell_open[2 * idx]     = open;
+    c.cell_open[2 * idx + 1] = open * PetscMax(cell[ice.CellOffset(icef::press)], 0.0);
+  }
+  PetscCall(IceRestoreLocalArray(ice, &cells));
   PetscCall(VecGetArray(gas_global, &gas));
   PetscInt l = 0;
   for (PetscInt k = xs[2]; k < xs[2] + xm[2]; ++k)
@@ -138,16 +148,14 @@ static PetscErrorCode SpreadWorkToTheGas(Coupling &c)
         PetscInt  n = 0;
         ForEachCellAroundNode(ice, i, j, k, [&](PetscInt idx, bool inside) {
           if (!inside) return;
-          const PetscReal theta = OpenGasFraction(ice, cells + idx * ice.stride);
-          open += theta;
-          energy += theta * PetscMax(cells[idx * ice.stride + ice.CellOffset(icef::press)], 0.0);
+          open += c.cell_open[2 * idx];
+          energy += c.cell_open[2 * idx + 1];
           ++n;
         });
         gas[2 * l]     = n ? open / n : 0;
         gas[2 * l + 1] = n ? energy / n : 0;
       }
   PetscCall(VecRestoreArray(gas_global, &gas));
-  PetscCall(IceRestoreLocalArray(ice, &cells));
   PetscCall(DMGlobalToLocal(c.da_spread, gas_global, INSERT_VALUES, gas_local));
   PetscCall(VecGetArrayRead(gas_local, &gas_l));
   auto open_of   = [&](PetscInt node) { return gas_l[2 * node]; };

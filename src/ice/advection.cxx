@@ -14,15 +14,6 @@
 
 namespace burst {
 
-// Whether a gas's density after the advection, rho, is a trace of its cell's mass (-ice_trace_mass)
-static bool EmptiedToTrace(const IceSolver &ice, const PetscScalar *c, PetscReal rho)
-{
-  if (!(ice.trace_mass > 0)) return false;
-  PetscReal mass = 0;
-  for (PetscInt l = 0; l < ice.nmat; ++l) mass += c[ice.Offset(l, icef::rho)];
-  return rho < ice.trace_mass * mass;
-}
-
 namespace {
 
 // The box of donor cells: owned cells and one layer around them.
@@ -378,7 +369,7 @@ PetscErrorCode IceAdvect(IceSolver &ice)
           // one, or takes the heaviest gas's of its cell: its mass is round-off next to its cell's,
           // and its energy with it. A gas the advection has just emptied to a trace counts too (the
           // fire scene's burst: air at 1e-12 kg/m^3 left at 0 K by the cancellation of its fluxes)
-          if (!(T > 0) && (IceIsTrace(ice, c, m) || EmptiedToTrace(ice, c, rho))) {
+          if (!(T > 0) && (IceIsTrace(ice, c, m) || IceIsTraceMass(ice, c, rho))) {
             PetscReal heaviest = 0, T_heaviest = 0;
             for (PetscInt g = 0; g < ice.ngas; ++g)
               if (c[ice.Offset(g, icef::rho)] > heaviest && c[ice.Offset(g, icef::temp_L)] > 0) {

@@ -10,7 +10,7 @@ namespace burst {
 PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
 {
   PetscScalar *a;
-  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6], pmax = 0, Tmax = 0;
+  PetscReal    local[6] = {0, 0, 0, 0, 0, 0}, global[6], max[2] = {0, 0}, global_max[2]; // the largest pressure and gas temperature
   PetscFunctionBeginUser;
   PetscCall(IceGetLocalArray(ice, &a));
   const PetscReal V = ice.CellVolume();
@@ -18,12 +18,12 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
     for (PetscInt j = ice.xs[1]; j < ice.xs[1] + ice.xm[1]; ++j)
       for (PetscInt i = ice.xs[0]; i < ice.xs[0] + ice.xm[0]; ++i) {
         const PetscScalar *c = a + ice.LocalIndex(i, j, k) * ice.stride;
-        pmax                 = PetscMax(pmax, c[ice.CellOffset(icef::press)]);
+        max[0]               = PetscMax(max[0], c[ice.CellOffset(icef::press)]);
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           const PetscReal M  = c[ice.Offset(m, icef::rho)] * V;
           PetscReal       u2 = 0;
           local[0] += M;
-          if (c[ice.Offset(m, icef::theta)] >= ice.trace_fraction) Tmax = PetscMax(Tmax, c[ice.Offset(m, icef::temp)]);
+          if (c[ice.Offset(m, icef::theta)] >= ice.trace_fraction) max[1] = PetscMax(max[1], c[ice.Offset(m, icef::temp)]);
           for (PetscInt d = 0; d < ice.dim; ++d) {
             const PetscReal u = c[ice.Offset(m, icef::vel + d)];
             local[1 + d] += M * u;
@@ -36,9 +36,10 @@ PetscErrorCode IceComputeTotals(IceSolver &ice, IceTotals &t)
       }
   PetscCall(IceRestoreLocalArray(ice, &a));
   PetscCallMPI(MPI_Allreduce(local, global, 6, MPIU_REAL, MPI_SUM, ice.comm));
-  PetscCallMPI(MPI_Allreduce(&pmax, &t.max_pressure, 1, MPIU_REAL, MPI_MAX, ice.comm));
-  PetscCallMPI(MPI_Allreduce(&Tmax, &t.max_temperature, 1, MPIU_REAL, MPI_MAX, ice.comm));
-  t.mass = global[0];
+  PetscCallMPI(MPI_Allreduce(max, global_max, 2, MPIU_REAL, MPI_MAX, ice.comm));
+  t.max_pressure    = global_max[0];
+  t.max_temperature = global_max[1];
+  t.mass            = global[0];
   for (int d = 0; d < 3; ++d) t.momentum[d] = global[1 + d];
   t.internal_energy = global[4];
   t.kinetic_energy  = global[5];

@@ -343,14 +343,15 @@ PetscReal IceTemperatureForm(const IceSolver &ice, const PetscScalar *c, PetscIn
 // Whether gas m is a trace in the cell c: below -ice_trace_fraction of its volume, or below
 // -ice_trace_mass of the cell's mass (a remnant at the rho_tiny level that has expanded past the
 // volume bound: doc/gas.md, the water-air tube)
-inline bool IceIsTrace(const IceSolver &ice, const PetscScalar *c, PetscInt m)
+// Whether a gas of bulk density rho is below -ice_trace_mass of the cell c's mass
+inline bool IceIsTraceMass(const IceSolver &ice, const PetscScalar *c, PetscReal rho)
 {
-  if (c[ice.Offset(m, icef::theta)] < ice.trace_fraction) return true;
   if (!(ice.trace_mass > 0)) return false;
   PetscReal mass = 0;
   for (PetscInt l = 0; l < ice.nmat; ++l) mass += c[ice.Offset(l, icef::rho)];
-  return c[ice.Offset(m, icef::rho)] < ice.trace_mass * mass;
+  return rho < ice.trace_mass * mass;
 }
+inline bool IceIsTrace(const IceSolver &ice, const PetscScalar *c, PetscInt m) { return c[ice.Offset(m, icef::theta)] < ice.trace_fraction || IceIsTraceMass(ice, c, c[ice.Offset(m, icef::rho)]); }
 // Counts one energy fallback of a gas in the cell c (local index idx) in ice.energy_fallbacks and in the
 // class of the cell (IceFallbackClass; sources.cxx).
 void IceCountFallback(IceSolver &ice, const PetscScalar *c, PetscInt idx);
