@@ -314,13 +314,20 @@ def burst2d(args):
             g, e = s["gas"], s["budget"]["energy"]
             dts = np.array([float(r["dt"]) for r in rows[:-1]])
             hottest = np.array([float(r["gas_max_temperature"]) for r in rows])
-            results[name] = (np.median(hottest), e["error_of_chemical"])
+            results[name] = (np.median(hottest), e["error_of_chemical"], e)
             print(f"{name}: {int(rows[-1]['step']) - s0['steps']} steps of mechanics, time step median {np.median(dts):.3g} s, min {dts.min():.3g} s; "
                   f"burnt {g['burnt_mass']:.4g} kg/m; the hottest gas (volume fraction over 1e-3) {g['peak_temperature']:.4g} K at most, {np.median(hottest):.4g} K in the median monitor row; "
                   f"energy residual {e['error_of_chemical']:.3e} of the chemical energy; pressure work held {e['pressure_work_held']:.4g} J/m of {e['pressure_work_charged']:.4g} charged")
     check("shipped: the hottest gas in the median monitor row over the bound (K)", results["shipped"][0], args.hot_bound, failures, fmt="{:.4g}")
     check("paid where it falls: the same exceeds the bound (bound/K)", args.hot_bound / results["paid where it falls"][0], 1, failures, fmt="{:.3g}")
-    check("shipped: energy residual over the chemical energy", abs(results["shipped"][1]), 2e-2, failures)
+    # the 1 % of the exploding scenes (verify_budget.py exploding); -1.0 % while the burnt particles'
+    # stress work and kinetic energy beyond the cells' reached no gas
+    check("shipped: energy residual over the chemical energy", abs(results["shipped"][1]), 1e-2, failures)
+    # the charge (ViscoSCRAM) heats as it deforms: the products take that heat once, in c_v T or in
+    # the stress work (burn.cxx), and what the cells gave them is what the burnt particles lost
+    e = results["shipped"][2]
+    lost = e["reactant_thermal"] + e["burnt_particles"]
+    check("shipped: |reactant energy the products received - what the burnt particles lost| / what they lost", abs(e["reactant_energy_cells"] - lost) / lost, 1e-9, failures)
     finish("verify_fire_burst2d", failures)
 
 

@@ -75,7 +75,12 @@ PetscErrorCode CouplingBurnSetUp(Coupling &c)
                names.c_str());
     any = true;
   }
+  PetscCheck(any == c.burn_energy, mpm.comm, PETSC_ERR_PLIB, "The burning solids (%s) and the particles' deformation heat (%s) disagree", any ? "some" : "none", c.burn_energy ? "tracked" : "not tracked");
   if (any) {
+    // the heat of a burning solid's stress updates, which its stress work holds, counted once (stress_loop.cxx)
+    mpm.deformation_heat_cv.assign(mpm.materials.size(), 0);
+    for (size_t m = 0; m < mpm.materials.size(); ++m)
+      if (c.solid_of[m] >= 0 && c.product[c.solid_of[m]] >= 0) mpm.deformation_heat_cv[m] = ice.materials[c.first + c.solid_of[m]].eos->cv;
     // the seeded particle masses (burnt-out threshold)
     PetscInt               n;
     const PetscReal       *mass;
@@ -260,8 +265,9 @@ PetscErrorCode CouplingBurn(Coupling &c)
   std::fill(ice.momentum_source.begin(), ice.momentum_source.end(), 0);
   std::fill(ice.energy_source.begin(), ice.energy_source.end(), 0);
   std::fill(c.burnt_fraction.begin(), c.burnt_fraction.end(), 0);
-  const PetscInt  dim = ice.dim, n = ice.nmat;
-  const PetscReal V = ice.CellVolume();
+  const PetscInt       dim = ice.dim, n = ice.nmat;
+  const PetscReal      V = ice.CellVolume();
+  const LocalNodeIndex index(c.mpm->grid);
   PetscCall(VecGetArrayRead(c.mass_local, &nodes));
   PetscCall(VecGetArrayRead(ice.local, &a));
   for (PetscInt k = ice.xs[2]; k < ice.xs[2] + ice.xm[2]; ++k)
@@ -281,6 +287,16 @@ PetscErrorCode CouplingBurn(Coupling &c)
           if (!(out.dm > 0)) continue;
           const PetscReal dr = out.dm / V, cv = ice.materials[m].eos->cv, Ts = in.T_s, *u = cell + ice.Offset(m, icef::vel);
           AddConversion(ice, idx, m, -dr, u, cv * Ts);
+          // The products take the reactant's energy: c_v T_s, the stored part of its stress work and
+          // its kinetic energy (the particles' projection per unit mass: what the burnt particles
+          // lose, BurnParticles), of which the momentum source brings |u|^2/2.
+          PetscReal stored = 0;
+          if (c.burn_energy) {
+            const PetscInt extra = c.nsolid * (2 + dim) + s;
+            ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) { stored += w * nodes[index(node[0], node[1], node[2]) * c.mass_stride + extra]; });
+            stored /= M - in.M_tiny;
+            for (PetscInt d = 0; d < dim; ++d) stored -= 0.5 * u[d] * u[d];
+          }
           // The products leave the burning surface on its gas side: into the neighbours across the
           // faces the outward normal -grad M points through, in proportion to |n_d| and to the room
           // the gases have there (their volume fraction), the rest into the burning cell itself.
@@ -305,13 +321,14 @@ PetscErrorCode CouplingBurn(Coupling &c)
           for (PetscInt d = 0; d <= dim; ++d) {
             const PetscReal share = total > 0 ? weight[d] / total : (d == dim ? 1.0 : 0.0); // no room anywhere: here
             if (share == 0) continue;
-            AddConversion(ice, target[d], g, share * dr, u, cv * Ts + out.Q);
+            AddConversion(ice, target[d], g, share * dr, u, cv * Ts + out.Q + stored);
           }
           // of the particles' mass in the cell, M - M_tiny: they lose exactly dm
           c.burnt_fraction[idx * c.nsolid + s] = out.dm / (M - in.M_tiny);
           c.burnt_mass += out.dm;
           c.counters[kChemicalEnergy] += out.dm * out.Q; // the products' energy beyond the reactant's c_v,s T_s
-          c.counters[kReactantThermalCells] += out.dm * cv * Ts;
+          c.counters[kReactantEnergyCells] += out.dm * (cv * Ts + stored);
+          for (PetscInt d = 0; d < dim; ++d) c.counters[kReactantEnergyCells] += 0.5 * out.dm * u[d] * u[d];
         }
       }
   PetscCall(VecRestoreArrayRead(ice.local, &a));
@@ -365,7 +382,7 @@ struct BurnParticles {
     const LocalNodeIndex index(g);
     PetscInt             n;
     const PetscReal     *x, *hw, *F;
-    PetscReal           *mass, *vol, *vol0, *energy;
+    PetscReal           *mass, *vol, *vol0, *energy, *heat;
     const PetscReal     *v, *T;
     const PetscInt      *material;
     PetscFunctionBeginUser;
@@ -379,6 +396,7 @@ struct BurnParticles {
     PetscCall(fields.Get(field::volume, &vol));
     PetscCall(fields.Get(field::volume0, &vol0));
     PetscCall(fields.Get(field::internal_energy, &energy));
+    PetscCall(fields.Get(field::deformation_heat, &heat));
     PetscCall(fields.Get(field::material, &material));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::temperature, &T));
@@ -401,7 +419,8 @@ struct BurnParticles {
       mpm.diag.removed_energy += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
       c.counters[kBurntParticleMass] += burnt;
       c.counters[kBurntParticleEnergy] += (1 - keep) * (0.5 * mass[p] * v2 + energy[p]);
-      c.counters[kBurntParticleThermal] += burnt * cv * T[p];
+      // (the heat of its stress updates is in energy[p]: counted there, not in c_v T)
+      c.counters[kBurntParticleThermal] += burnt * cv * T[p] - (1 - keep) * heat[p];
       for (int a = 0; a < DIM; ++a) {
         mpm.diag.removed_momentum[a] += burnt * v[DIM * p + a];
         c.counters[kBurntParticleMomentum + a] += burnt * v[DIM * p + a];
@@ -410,22 +429,23 @@ struct BurnParticles {
       vol[p] *= keep;
       vol0[p] *= keep;
       energy[p] *= keep;
+      heat[p] *= keep;
       if (mass[p] < c.burnout * c.seed_mass[s] || J < c.burnout_volume_ratio) {
         // burnt out: the rest burns into the product in the particle's cell (ice.md 2.4's bookkeeping)
         remove[p]       = 1;
         PetscInt ijk[3] = {0, 0, 0};
         for (int d = 0; d < DIM; ++d) ijk[d] = PetscMin(PetscMax((PetscInt)std::floor((x[DIM * p + d] - ice.lower[d]) / ice.h[d]), ice.xs[d]), ice.xs[d] + ice.xm[d] - 1);
         const PetscInt  idx = ice.LocalIndex(ijk[0], ijk[1], ijk[2]), m = c.first + s;
-        const PetscReal dr = mass[p] / V;
+        const PetscReal dr = mass[p] / V, stored = (energy[p] - heat[p]) / mass[p]; // (the momentum brings |v|^2/2)
         AddConversion(ice, idx, m, -dr, v + DIM * p, cv * T[p]);
-        AddConversion(ice, idx, c.product[s], dr, v + DIM * p, cv * T[p] + c.burn[s]->HeatOfReaction());
+        AddConversion(ice, idx, c.product[s], dr, v + DIM * p, cv * T[p] + c.burn[s]->HeatOfReaction() + stored);
         c.burnt_mass += mass[p]; // RemoveParticles books its mass, momentum and energy as removed
         c.counters[kBurntParticleMass] += mass[p];
         c.counters[kBurntParticleEnergy] += 0.5 * mass[p] * v2 + energy[p];
-        c.counters[kBurntParticleThermal] += mass[p] * cv * T[p];
+        c.counters[kBurntParticleThermal] += mass[p] * cv * T[p] - heat[p];
         for (int a = 0; a < DIM; ++a) c.counters[kBurntParticleMomentum + a] += mass[p] * v[DIM * p + a];
         c.counters[kChemicalEnergy] += mass[p] * c.burn[s]->HeatOfReaction();
-        c.counters[kReactantThermalCells] += mass[p] * cv * T[p]; // (a remnant's product takes the particle's own)
+        c.counters[kReactantEnergyCells] += mass[p] * (cv * T[p] + stored + 0.5 * v2); // (a remnant's product takes the particle's own)
       }
     }
     PetscCall(fields.RestoreAll());

@@ -95,6 +95,12 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
     PetscOptionsBegin(mpm.comm, pre.c_str(), "Solid as the gas sees it", "Coupling");
     PetscCall(PetscOptionsReal("-heat_capacity", "Specific heat of the solid for the heat exchange with the gas (J/(kg K)), > 0; required with gas", "", eos->cv, &eos->cv, &set));
     PetscOptionsEnd();
+    // a solid that burns (its model and product are read in burn.cxx): its particles keep the heat
+    // of their stress updates, so that its products take its internal energy once
+    char      burn_type[64] = "none";
+    PetscBool burn_set      = PETSC_FALSE;
+    PetscCall(PetscOptionsGetString(nullptr, pre.c_str(), "-burn_type", burn_type, sizeof(burn_type), &burn_set));
+    if (burn_set && std::string(burn_type) != "none") c->burn_energy = true;
     PetscCheck(set || mpm.help, mpm.comm, PETSC_ERR_USER_INPUT, "Material %s: a scene with gas needs -%sheat_capacity (J/(kg K), > 0) for the heat exchange", mat.Name(), pre.c_str());
     PetscCall(CheckRange(mpm.comm, ("-" + pre + "heat_capacity").c_str(), eos->cv, 0, PETSC_MAX_REAL, PETSC_TRUE));
     c->solid_of[m] = c->nsolid++;
@@ -102,13 +108,16 @@ PetscErrorCode CouplingSolidMaterials(MpmSolver &mpm, std::vector<IceSolidSpec> 
     eos->name_ = "solid_coupling";
     solids.push_back({mat.Name(), eos.release(), 300});
   }
+  mpm.deformation_heat = c->burn_energy ? PETSC_TRUE : PETSC_FALSE;
   *coupling            = c.release();
   mpm.ambient_pressure = PETSC_TRUE;
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
 namespace {
-// Particles -> nodes, per solid material: mass, mass T, momentum.
+// Particles -> nodes, per solid material: mass, mass T, momentum; with burning, the mass times the
+// energy a particle's products take beyond c_v T (burn.cxx): (internal energy - deformation heat)/m
+// + |v|^2/2, projected with the weights that then take the burnt mass from the particles.
 struct ProjectKernel {
   MpmSolver   &mpm;
   Coupling    &c;
@@ -120,11 +129,12 @@ struct ProjectKernel {
     const LocalNodeIndex index(g);
     const PetscInt       stride = 2 + DIM, dof = c.mass_stride;
     PetscInt             n;
-    const PetscReal     *x, *v, *m, *T, *hw, *F;
+    const PetscReal     *x, *v, *m, *T, *hw, *F, *energy = nullptr, *heat = nullptr;
     const PetscInt      *mat;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
-    SwarmAccess fields(mpm.swarm);
+    const PetscInt extra = c.nsolid * stride; // the burn energies' block
+    SwarmAccess    fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::mass, &m));
@@ -132,15 +142,25 @@ struct ProjectKernel {
     PetscCall(fields.Get(field::half_width0, &hw));
     PetscCall(fields.Get(field::F, &F));
     PetscCall(fields.Get(field::material, &mat));
+    if (c.burn_energy) {
+      PetscCall(fields.Get(field::internal_energy, &energy));
+      PetscCall(fields.Get(field::deformation_heat, &heat));
+    }
     Stencil<DIM, S> st;
     for (PetscInt p = 0; p < n; ++p) {
       st.Evaluate(g.axes, x + DIM * p, hw + DIM * p, F + 9 * p);
       const PetscInt s = c.solid_of[mat[p]];
+      PetscReal      e = 0; // J: what the products of the whole particle would take beyond m c_v T
+      if (c.burn_energy) {
+        e = energy[p] - heat[p];
+        for (int a = 0; a < DIM; ++a) e += 0.5 * m[p] * v[DIM * p + a] * v[DIM * p + a];
+      }
       ForEachNode(st, [&](PetscInt i, PetscInt j, PetscInt k, PetscReal N, const PetscReal[]) {
         PetscScalar *node = out + index(i, j, k) * dof + s * stride;
         node[0] += N * m[p];
         node[1] += N * m[p] * T[p];
         for (int a = 0; a < DIM; ++a) node[2 + a] += N * m[p] * v[DIM * p + a];
+        if (c.burn_energy) out[index(i, j, k) * dof + extra + s] += N * e;
       });
     }
     PetscCall(fields.RestoreAll());
@@ -473,7 +493,7 @@ PetscErrorCode CouplingSetUp(Coupling &c, IceSolver &ice)
   PetscCheck(!mpm.convert_failed, mpm.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(mpm.scheme != StepScheme::USF, mpm.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
-  c.mass_stride = c.nsolid * (2 + mpm.grid.dim);
+  c.mass_stride = c.nsolid * (2 + mpm.grid.dim + (c.burn_energy ? 1 : 0));
   c.nfield      = mpm.TwoDeformableFields() ? 2 : 1;
   c.field_of.assign(c.nsolid, 0);
   for (size_t m = 0; m < mpm.materials.size(); ++m)

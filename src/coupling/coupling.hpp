@@ -59,12 +59,13 @@ PetscErrorCode CouplingBurnParticles(Coupling &c);
 
 // The coupling's budget counters (monitor.cxx, checkpoint.cxx), this rank's, cumulative since the
 // start: what burning took from the particles (mass; kinetic energy and stress work; thermal energy
-// m c_v,s T_p; momentum), the chemical energy the burn model released (dm Q: what the product's energy
-// source dm (c_v,s T_s + Q) holds beyond the reactant's own c_v,s T_s), and the heat the gas gave the
+// m c_v,s T_p less the heat of the stress updates, which the stress work holds; momentum), the
+// chemical energy the burn model released (dm Q: what the products receive beyond the reactant's own
+// energy), and the heat the gas gave the
 // particles (the cell exchange's and the drag's heat as the particles received it, m c_v,s dT_p).
 // The same transfers as the cells saw them, which the budgets report beside the particles' view:
 // the heat the exchange gave the solids' cell materials (M_s c_v,s (T_L - T)), the reactant's
-// thermal energy the products received (dm c_v,s T_s at the cell's solid temperature), and the
+// energy the products received (dm (c_v,s T_s + the projected stored and kinetic energy per mass)), and the
 // momentum the cells' sources and exchange gave the solids (M_s (u_L - u)) against what the nodes
 // received of it (m_I dv_I, before the face conditions hold it back), and the kinetic energy the same
 // increments give the solids in the cells (M_s (|u_L|^2 - |u|^2)/2) and at the nodes (m_I (|v + dv|^2
@@ -77,7 +78,7 @@ enum CouplingCounter : int {
   kChemicalEnergy = kBurntParticleMomentum + 3,
   kHeatToParticles,
   kHeatToSolidCells,
-  kReactantThermalCells,
+  kReactantEnergyCells,
   kMomentumToSolidCells,                            // 3 values
   kMomentumToNodes     = kMomentumToSolidCells + 3, // 3 values
   kKineticToSolidCells = kMomentumToNodes + 3,

@@ -17,13 +17,14 @@ struct Coupling {
   std::vector<PetscInt>  solid_of;              // MPM material id -> solid index
   PetscReal              p_ref = 101325;
   std::vector<PetscReal> rho0;                  // per solid: density as seeded (its coupling EOS at p_ref)
-  DM                     da_mass     = nullptr; // nodes: per solid [mass, mass T, momentum (dim)]
+  DM                     da_mass     = nullptr; // nodes: per solid [mass, mass T, momentum (dim)], then with burning per solid its mass x energy beyond c_v T (burn.cxx)
   Vec                    mass_global = nullptr, mass_local = nullptr;
   DM                     da_inc     = nullptr; // nodes: [p, then per deformable velocity field: dv (dim), dT]
   Vec                    inc_global = nullptr, inc_local = nullptr;
   PetscInt               mass_stride = 0;
-  PetscInt               nfield      = 1; // deformable velocity fields (2 with -mpm_contact_material)
-  std::vector<PetscInt>  field_of;        // per solid: its velocity field
+  bool                   burn_energy = false; // a solid burns: the nodes carry each solid's stored and kinetic energy (after the nsolid (2 + dim) values)
+  PetscInt               nfield      = 1;     // deformable velocity fields (2 with -mpm_contact_material)
+  std::vector<PetscInt>  field_of;            // per solid: its velocity field
 
   PetscInt IncDof(PetscInt dim) const { return 1 + nfield * (dim + 1); }
   // Burning (burn.cxx), per solid: the model (null: inert), the product gas (ICE material index),

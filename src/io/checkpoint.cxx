@@ -814,7 +814,8 @@ PetscErrorCode ReadParticles(Simulation &sim, PetscViewer viewer, const std::str
     const PetscScalar *a;
     PetscBool          has;
     PetscCall(PetscViewerHDF5HasDataset(viewer, ("/particles/" + name).c_str(), &has));
-    PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s has no particle field %s: it was written by a run with other materials or models (this run: -materials %s)", file.c_str(), name.c_str(), SolidNames(sim).c_str());
+    PetscCheck(has, sim.comm, PETSC_ERR_USER_INPUT, "Checkpoint %s has no particle field %s: it was written by a run with other materials or models, or by an older burst (this run: -materials %s)", file.c_str(), name.c_str(),
+               SolidNames(sim).c_str());
     PetscCall(DMSwarmGetField(sim.mpm.swarm, name.c_str(), &bs, &type, &data));
     PetscCall(VecCreate(sim.comm, &v));
     PetscCall(VecSetBlockSize(v, bs));

@@ -164,7 +164,7 @@ struct Budget {
   PetscReal face_impulse[3] = {0, 0, 0}, bc_impulse[3] = {0, 0, 0}, removed_momentum[3] = {0, 0, 0};
   PetscReal solid_kinetic = 0, solid_internal = 0, heat_to_particles = 0, reactant_thermal = 0, gas_kinetic = 0, gas_internal = 0;
   PetscReal open_energy = 0, open_work = 0, removed_energy = 0, external_work = 0, chemical = 0;
-  PetscReal heat_to_solid_cells = 0, reactant_thermal_cells = 0;                        // the cells' view of two transfers (not in the sums)
+  PetscReal heat_to_solid_cells = 0, reactant_energy_cells = 0;                         // the cells' view of two transfers (not in the sums)
   PetscReal momentum_to_solid_cells[3] = {0, 0, 0}, momentum_to_nodes[3] = {0, 0, 0};   // the cells' and the nodes' view of the solids' momentum from the gas (not in the sums)
   PetscReal kinetic_to_solid_cells = 0, kinetic_to_nodes = 0;                           // and of the kinetic energy it brings
   PetscReal drag_energy_change         = 0;                                             // what the cell exchange's drag created (< 0: the dissipated kinetic energy dropped; not in the sums)
@@ -252,7 +252,7 @@ PetscErrorCode ComputeBudget(Simulation &sim, const EnergyReport &r, const IceTo
   b.external_work           = r.external_work;
   b.chemical                = counter[kChemicalEnergy];
   b.heat_to_solid_cells     = counter[kHeatToSolidCells];
-  b.reactant_thermal_cells  = counter[kReactantThermalCells];
+  b.reactant_energy_cells   = counter[kReactantEnergyCells];
   b.drag_energy_change      = global[kDrag];
   b.solid_pressure_work     = global[kPressureWork];
   b.gas_interface_work      = global[kInterfaceWork];
@@ -363,7 +363,7 @@ PetscErrorCode MonitorSetUp(Simulation &sim)
                    ",grid_face_impulse_x,grid_face_impulse_y,grid_face_impulse_z,removed_particle_momentum_x,removed_particle_momentum_y,removed_particle_momentum_z"
                    ",momentum_budget_residual_x,momentum_budget_residual_y,momentum_budget_residual_z,momentum_budget_error"
                    ",heat_to_particles,reactant_thermal_energy,open_face_energy,open_face_work,removed_particle_energy,chemical_energy"
-                   ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_thermal_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_"
+                   ",budget_energy,energy_budget_residual,energy_budget_scale,solid_balance_error,heat_to_solid_cells,reactant_energy_cells,kinetic_to_solid_cells,kinetic_to_nodes,drag_energy_change,solid_pressure_work,gas_interface_work,advection_"
                    "energy_change,fallback_energy_change,trace_energy_change,equilibration_energy_change,exchange_energy_change,exchange_fallback_energy,solid_cell_energy_transfer,ambient_stress_work,pressure_work_charged,pressure_work_held");
     if (expansion) std::fprintf(csv, ",expansion_velocity");
     if (sim.phases.Enabled()) { // the fire's histories (src/phases.hpp)
@@ -445,7 +445,7 @@ PetscErrorCode Monitor(Simulation &sim, PetscBool force)
         for (int d = 0; d < 3; ++d) std::fprintf(csv, ",%.12e", (double)v[d]);
       std::fprintf(csv, ",%.6e", (double)b.momentum_error);
       for (PetscReal v : {b.heat_to_particles, b.reactant_thermal, b.open_energy, b.open_work, b.removed_energy, b.chemical, b.energy}) std::fprintf(csv, ",%.16e", (double)v);
-      std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.mpm.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_thermal_cells);
+      std::fprintf(csv, ",%.12e,%.12e,%.12e,%.16e,%.16e", (double)b.energy_residual, (double)sim.mpm.diag.budget_scale[2], (double)r.balance_error, (double)b.heat_to_solid_cells, (double)b.reactant_energy_cells);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.kinetic_to_solid_cells, (double)b.kinetic_to_nodes, (double)b.drag_energy_change, (double)b.solid_pressure_work);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.gas_interface_work, (double)b.advection_energy_change, (double)b.fallback_energy_change, (double)b.trace_energy_change);
       std::fprintf(csv, ",%.16e,%.16e,%.16e,%.16e", (double)b.equilibration_energy_change, (double)b.exchange_energy_change, (double)b.exchange_fallback_energy, (double)b.solid_cell_energy_transfer);
@@ -601,7 +601,7 @@ PetscErrorCode WriteSummary(Simulation &sim)
     s << ", \"external_work\": " << b.external_work << ", \"chemical\": " << b.chemical;
     s << ", \"initial\": " << init[4] << ", \"residual\": " << b.energy_residual << ", \"largest_term\": " << scale[2] << ", \"error\": " << b.energy_error;
     s << ", \"error_of_chemical\": " << (b.chemical > 0 ? b.energy_residual / b.chemical : 0.0);
-    s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_thermal_cells\": " << b.reactant_thermal_cells;
+    s << ", \"heat_to_solid_cells\": " << b.heat_to_solid_cells << ", \"reactant_energy_cells\": " << b.reactant_energy_cells;
     s << ", \"kinetic_to_solid_cells\": " << b.kinetic_to_solid_cells << ", \"kinetic_to_nodes\": " << b.kinetic_to_nodes << ", \"drag_energy_change\": " << b.drag_energy_change << ", \"solid_pressure_work\": " << b.solid_pressure_work
       << ", \"gas_interface_work\": " << b.gas_interface_work << ", \"advection_energy_change\": " << b.advection_energy_change << ", \"fallback_energy_change\": " << b.fallback_energy_change << ", \"trace_energy_change\": " << b.trace_energy_change
       << ", \"equilibration_energy_change\": " << b.equilibration_energy_change << ", \"exchange_energy_change\": " << b.exchange_energy_change << ", \"exchange_fallback_energy\": " << b.exchange_fallback_energy

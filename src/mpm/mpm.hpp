@@ -64,6 +64,7 @@ inline constexpr const char *surface_temperature_time = "surface_temperature_tim
 inline constexpr const char *surface_conductance      = "surface_conductance";      // W/K: G_p of the surface heat G_p (T_f - T_p) (only with -phases)
 inline constexpr const char *reacted_fraction         = "reacted_fraction";         // -: a charge particle's thermally decomposed fraction (only with -phases)
 inline constexpr const char *affine                   = "affine";                   // 1/s, bs 9: APIC affine velocity matrix B D^-1 (only with -mpm_transfer apic)
+inline constexpr const char *deformation_heat         = "deformation_heat";         // J: m c_v dT of the stress updates, heat that internal_energy also holds (only for a solid that burns)
 } // namespace field
 
 // A piecewise-linear function of time (pressure histories), Pa.
@@ -210,11 +211,18 @@ struct MpmSolver {
   PetscInt      contact_material    = -1;           // its material id, -1 if none
   PetscBool     ambient_pressure    = PETSC_FALSE;  // particles carry a surrounding gas's pressure (the coupling sets it)
   PetscBool     surface_heat_fields = PETSC_FALSE;  // particles carry the surface heat of a run in phases (-phases)
+  PetscBool     deformation_heat    = PETSC_FALSE;  // particles carry field::deformation_heat (the coupling sets it for a solid that burns)
   ContactType   contact             = ContactType::Friction;
   PetscReal     friction            = 0;  // Coulomb coefficient of the contact between fields
   PetscInt      rigid_material      = -1; // material id of the rigid body, -1 if none
   PetscReal     rigid_velocity[3]   = {0, 0, 0};
   PetscInt      sort_interval       = 0; // -mpm_sort_interval: steps between sorts of the particles by cell (swarm.cxx)
+
+  // A burning solid's heat from its stress updates (stress_loop.cxx): per material the c_v of the
+  // tracked heat (J/(kg K); 0: not tracked; set by the coupling's burn set-up), and the
+  // temperatures before this step's update (scratch)
+  std::vector<PetscReal> deformation_heat_cv, temperature_before;
+
   // Velocity fields: 0 intact deformable, 1 converted (failed) particles if -mpm_convert_failed or
   // the material of -mpm_contact_material, last the rigid body if any.
   PetscInt VelocityField(PetscInt material, PetscInt failed) const

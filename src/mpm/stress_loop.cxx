@@ -17,7 +17,17 @@ PetscErrorCode UpdateStress(MpmSolver &mpm)
   PetscCall(PetscLogEventBegin(mpm.ev_stress, 0, 0, 0, 0));
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
   f.time = mpm.time + mpm.dt;
+  // A burning solid's products take its internal energy; the part of its stress work that the
+  // update turned into temperature (dissipation, thermoelastic heating) is counted once
+  // (coupling/burn.cxx), so the temperature change of the update is kept per particle.
+  const bool track_heat = !mpm.deformation_heat_cv.empty();
+  if (track_heat) mpm.temperature_before.assign(f.temperature, f.temperature + f.n);
   PetscCall(UpdateStressShared(mpm, f));
+  if (track_heat) {
+    PetscReal *heat;
+    PetscCall(fields.Get(field::deformation_heat, &heat));
+    for (PetscInt p = 0; p < f.n; ++p) heat[p] += f.mass[p] * mpm.deformation_heat_cv[f.material[p]] * (f.temperature[p] - mpm.temperature_before[p]);
+  }
   if (mpm.viscosity[0] > 0 || mpm.viscosity[1] > 0) {
     // Artificial bulk viscosity (models.md 5.5; von Neumann-Richtmyer with a linear term): acts in
     // compression only, enters the internal force as -q I (p2g.cxx), and its work is dissipated:

@@ -56,6 +56,7 @@ PetscErrorCode CreateSwarm(MpmSolver &mpm)
   if (mpm.ambient_pressure) PetscCall(RegisterSwarmField(sw, field::ambient_pressure, 1, PETSC_REAL, &mpm.swarm_bytes));
   if (mpm.surface_heat_fields)
     for (const char *name : {field::surface_heat, field::surface_temperature_time, field::surface_conductance, field::reacted_fraction}) PetscCall(RegisterSwarmField(sw, name, 1, PETSC_REAL, &mpm.swarm_bytes));
+  if (mpm.deformation_heat) PetscCall(RegisterSwarmField(sw, field::deformation_heat, 1, PETSC_REAL, &mpm.swarm_bytes));
   if (mpm.transfer == Transfer::APIC) PetscCall(RegisterSwarmField(sw, field::affine, 9, PETSC_REAL, &mpm.swarm_bytes));
   PetscCall(RegisterMaterialState(sw, mpm.materials, &mpm.swarm_bytes));
   PetscCall(DMSwarmFinalizeFieldRegister(sw));
