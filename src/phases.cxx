@@ -140,7 +140,6 @@ PetscErrorCode ApplyPhase(Simulation &sim)
   sim.ice->sound_speed_knob = p == RunPhase::HeatUp ? ph.heatup_sound_speed_knob : ph.mechanics_sound_speed_knob;
   if (ph.semi_implicit_gas) sim.ice->pressure_solver = p == RunPhase::Mechanics && ph.mechanics_explicit ? IcePressureSolver::Explicit : IcePressureSolver::SemiImplicit;
   if (p == RunPhase::Mechanics && ph.mechanics_explicit) sim.ice->sound_speed_knob = 1; // (explicit: the sound speed in full)
-  IceSetSolidHeatExchange(*sim.ice, p == RunPhase::Mechanics && ph.mechanics_exchange_heat_solid >= 0 ? ph.mechanics_exchange_heat_solid : ph.exchange_heat_solid);
   PetscCall(CouplingMeasureSurfaceHeat(*sim.coupling, (PetscBool)(p == RunPhase::HeatUp && ph.window_start >= 0)));
   if (sim.mpm.heat) PetscCall(HeatSetSurfaceSource(sim.mpm, (PetscBool)(p == RunPhase::HeatOnly), ph.flame_temperature));
   PetscFunctionReturn(PETSC_SUCCESS);
@@ -235,9 +234,6 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(PetscOptionsReal("-phase_mechanics_duration", "mechanics: the run ends this long after they began (s), >= 0; 0: at -final_time (an ignition time is not known before the run)", "", ph.mechanics_duration, &ph.mechanics_duration, nullptr));
   PetscCall(PetscOptionsBool("-phase_mechanics_explicit", "mechanics: the gas pressure explicit (the exploding scenes' step; the heat-up needs -ice_pressure_solver semi_implicit for its long steps), with the sound-speed knob 1", "",
                              ph.mechanics_explicit, &ph.mechanics_explicit, nullptr));
-  PetscCall(PetscOptionsReal("-phase_mechanics_exchange_heat_solid",
-                             "mechanics: the heat exchange coefficient between each gas and each solid in their cells (W/(m^3 K)), in [0, 1e15]; < 0: -ice_exchange_heat_solid, the heat-up's (whose surface heat has a model of its own)", "",
-                             ph.mechanics_exchange_heat_solid, &ph.mechanics_exchange_heat_solid, nullptr));
   PetscCall(PetscOptionsBool("-phase_checkpoint", "Write a checkpoint at each phase switch, kept as phase_<phase>_<step>.h5", "", ph.write_checkpoint, &ph.write_checkpoint, nullptr));
   PetscOptionsEnd();
   if (sim.help) PetscFunctionReturn(PETSC_SUCCESS);
@@ -252,7 +248,6 @@ PetscErrorCode PhasesSetUp(Simulation &sim)
   PetscCall(CheckRange(sim.comm, "-phase_flame_temperature", ph.flame_temperature, 0, 1e6, PETSC_FALSE));
   if (ph.ignition_by_kinetics) PetscCall(CheckRange(sim.comm, "-phase_kinetics_fraction", ph.kinetics_fraction, 0, 1, PETSC_TRUE));
   PetscCall(CheckRange(sim.comm, "-phase_mechanics_duration", ph.mechanics_duration, 0, PETSC_MAX_REAL, PETSC_FALSE));
-  if (ph.mechanics_exchange_heat_solid >= 0) PetscCall(CheckRange(sim.comm, "-phase_mechanics_exchange_heat_solid", ph.mechanics_exchange_heat_solid, 0, 1e15, PETSC_FALSE));
   PetscCall(CheckRange(sim.comm, "-phase_ignition_temperature", ph.ignition_temperature, 0, 1e6, PETSC_FALSE));
   if (has_material) {
     std::string names;
@@ -309,7 +304,6 @@ PetscErrorCode PhasesCheck(Simulation &sim)
   PetscCheck(ph.ignition_temperature > 0 || !ph.ignition_by_temperature, sim.comm, PETSC_ERR_USER_INPUT, "Option -phase_ignition_temperature: the burn model of %s (%s) has no ignition temperature; give one (K, > 0)",
              sim.mpm.materials[ph.ignition_material]->Name(), model.c_str());
   ph.mechanics_sound_speed_knob = sim.ice->sound_speed_knob;
-  ph.exchange_heat_solid        = IceSolidHeatExchange(*sim.ice);
   ph.semi_implicit_gas          = (PetscBool)(sim.ice->pressure_solver == IcePressureSolver::SemiImplicit);
   if (ph.switch_time[(int)ph.order[0]] < 0) ph.switch_time[(int)ph.order[0]] = sim.time;
   PetscCall(ApplyPhase(sim));

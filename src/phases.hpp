@@ -58,10 +58,9 @@ struct Phases {
   PetscBool                                                          ignition_by_kinetics    = PETSC_FALSE;           // -phase_ignition kinetics: each charge particle's thermal decomposition
   PetscReal                                                          kinetics_fraction       = 0.01;                  // the reacted fraction that counts as runaway
   std::unique_ptr<ThermalDecomposition, ThermalDecompositionDeleter> kinetics;                                        // -<material>_decomposition_*
-  PetscBool                                                          write_checkpoint              = PETSC_TRUE;
-  PetscReal                                                          mechanics_duration            = 0;          // s; > 0: the run ends this long after mechanics began
-  PetscBool                                                          mechanics_explicit            = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)
-  PetscReal                                                          mechanics_exchange_heat_solid = -1;         // W/(m^3 K): the gas-solid heat exchange of mechanics; < 0: the run's -ice_exchange_heat_solid
+  PetscBool                                                          write_checkpoint   = PETSC_TRUE;
+  PetscReal                                                          mechanics_duration = 0;          // s; > 0: the run ends this long after mechanics began
+  PetscBool                                                          mechanics_explicit = PETSC_TRUE; // mechanics on the explicit gas pressure (the burst's own step, as the exploding scenes)
 
   // State (checkpointed: /run/phases)
   size_t    current           = 0;            // index into order
@@ -77,7 +76,6 @@ struct Phases {
   bool      heat_only_checked         = false;
 
   PetscReal              mechanics_sound_speed_knob = 0;           // the gas's own k, restored for mechanics
-  PetscReal              exchange_heat_solid        = 0;           // W/(m^3 K): the run's -ice_exchange_heat_solid, for heatup and heat_only
   PetscBool              semi_implicit_gas          = PETSC_FALSE; // the gas's own pressure solver is the semi-implicit one
   std::vector<PetscReal> temperature_before;                       // per local particle, reused: the heat-up's measurement
   PetscLogEvent          ev_measure = 0, ev_heat_only = 0;

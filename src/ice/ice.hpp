@@ -313,9 +313,6 @@ PetscErrorCode IceFaceVelocities(IceSolver &ice);
 PetscErrorCode IceUpdatePressure(IceSolver &ice);
 PetscErrorCode IceSources(IceSolver &ice);
 PetscErrorCode IceCellExchange(IceSolver &ice);
-// The heat exchange coefficient of every gas-solid pair (W/(m^3 K)); the run's is -ice_exchange_heat_solid
-void           IceSetSolidHeatExchange(IceSolver &ice, PetscReal H);
-PetscReal      IceSolidHeatExchange(const IceSolver &ice); // (0 without solids)
 PetscErrorCode IceAdvect(IceSolver &ice);
 // The semi-implicit pressure (pressure_implicit.cxx), called by IceUpdatePressure.
 PetscErrorCode IceSolvePressureSemiImplicit(IceSolver &ice);

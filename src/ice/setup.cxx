@@ -488,15 +488,6 @@ static PetscErrorCode ReadSolidExchange(IceSolver &ice)
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
-void IceSetSolidHeatExchange(IceSolver &ice, PetscReal H)
-{
-  for (PetscInt a = 0; a < ice.nmat; ++a)
-    for (PetscInt b = 0; b < ice.nmat; ++b)
-      if (a != b && (a < ice.ngas) != (b < ice.ngas)) ice.exchange_H[a][b] = H;
-}
-
-PetscReal IceSolidHeatExchange(const IceSolver &ice) { return ice.nmat > ice.ngas && ice.ngas > 0 ? ice.exchange_H[0][ice.ngas] : 0; }
-
 PetscErrorCode IceCreate(MPI_Comm comm, const IceGridSpec &grid, PetscBool help, IceSolver **out)
 {
   PetscFunctionBeginUser;
