@@ -97,7 +97,7 @@ def dofs(scene):
     return {
         "node": nvf * (1 + 2 * d + (d if nvf > 1 else 0)),  # Grid::NodeStride x fields (simulation.hpp)
         "velocity": nvf * 2 * d,  # da_velocity (grid.cxx)
-        "mass": ns * (2 + d),  # da_mass (coupling.cxx)
+        "mass": ns * (3 + d),  # da_mass (coupling.cxx; the charge burns: one more value per solid, burn.cxx)
         "inc": 1 + nfield * (d + 1),  # Coupling::IncDof
         "phi": ns,  # da_phi (burn.cxx)
         "impulse": nfield * d,  # da_impulse (coupling.cxx)
