@@ -292,7 +292,7 @@ PetscErrorCode CouplingBurn(Coupling &c)
           // lose, BurnParticles), of which the momentum source brings |u|^2/2.
           PetscReal stored = 0;
           if (c.burn_energy) {
-            const PetscInt extra = c.nsolid * (2 + dim) + s;
+            const PetscInt extra = c.BurnEnergyOffset(dim, s);
             ForEachCorner(ice, i, j, k, [&](const PetscInt node[3], PetscReal w) { stored += w * nodes[index(node[0], node[1], node[2]) * c.mass_stride + extra]; });
             stored /= M - in.M_tiny;
             for (PetscInt d = 0; d < dim; ++d) stored -= 0.5 * u[d] * u[d];

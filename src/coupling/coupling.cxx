@@ -133,8 +133,7 @@ struct ProjectKernel {
     const PetscInt      *mat;
     PetscFunctionBeginUser;
     PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
-    const PetscInt extra = c.nsolid * stride; // the burn energies' block
-    SwarmAccess    fields(mpm.swarm);
+    SwarmAccess fields(mpm.swarm);
     PetscCall(fields.Get(DMSwarmPICField_coor, &x));
     PetscCall(fields.Get(field::velocity, &v));
     PetscCall(fields.Get(field::mass, &m));
@@ -160,7 +159,7 @@ struct ProjectKernel {
         node[0] += N * m[p];
         node[1] += N * m[p] * T[p];
         for (int a = 0; a < DIM; ++a) node[2 + a] += N * m[p] * v[DIM * p + a];
-        if (c.burn_energy) out[index(i, j, k) * dof + extra + s] += N * e;
+        if (c.burn_energy) out[index(i, j, k) * dof + c.BurnEnergyOffset(DIM, s)] += N * e;
       });
     }
     PetscCall(fields.RestoreAll());
@@ -493,7 +492,7 @@ PetscErrorCode CouplingSetUp(Coupling &c, IceSolver &ice)
   PetscCheck(!mpm.convert_failed, mpm.comm, PETSC_ERR_SUP, "Option -mpm_convert_failed is not supported with gas yet (use -mpm_contact_material for a second velocity field)");
   PetscCheck(mpm.scheme != StepScheme::USF, mpm.comm, PETSC_ERR_SUP, "Option -mpm_scheme usf is not supported with gas: use usl or musl");
   c.first       = ice.ngas;
-  c.mass_stride = c.nsolid * (2 + mpm.grid.dim + (c.burn_energy ? 1 : 0));
+  c.mass_stride = c.MassDof(mpm.grid.dim);
   c.nfield      = mpm.TwoDeformableFields() ? 2 : 1;
   c.field_of.assign(c.nsolid, 0);
   for (size_t m = 0; m < mpm.materials.size(); ++m)

@@ -27,6 +27,9 @@ struct Coupling {
   std::vector<PetscInt>  field_of;            // per solid: its velocity field
 
   PetscInt IncDof(PetscInt dim) const { return 1 + nfield * (dim + 1); }
+  // da_mass: per solid [mass, mass T, momentum (dim)], then with burning the burn energies' block
+  PetscInt MassDof(PetscInt dim) const { return nsolid * (2 + dim + (burn_energy ? 1 : 0)); }
+  PetscInt BurnEnergyOffset(PetscInt dim, PetscInt s) const { return nsolid * (2 + dim) + s; }
   // Burning (burn.cxx), per solid: the model (null: inert), the product gas (ICE material index),
   // the mass of a particle as seeded (burnt-out threshold); per local cell and solid, the fraction
   // of the solid's cell mass burnt this step.
