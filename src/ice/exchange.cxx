@@ -65,6 +65,15 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           if (back) c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
           else ice.drag_energy_change -= V * c[ice.Offset(m, icef::rho_L)] * heat[m]; // the kinetic energy the drag removes, dropped
         }
+        // The heat exchange conserves sum_m rho_m c_v,m T_m, so a gas that the drag left below 0 K is
+        // checked after it: in a cell the steel fills, the solid's heat pays the deficit, and only
+        // what the exchange cannot cover falls back to the temperature form below
+        for (PetscInt m = 0; m < N; ++m)
+          for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
+        E.Factor(beta);
+        for (PetscInt m = 0; m < N; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
+        E.Apply(beta, q);
+        for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           PetscReal &T_L = c[ice.Offset(m, icef::temp_L)];
           if (T_L > 0) continue;
@@ -88,12 +97,6 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
                      "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k,
                      (double)T_L);
         }
-        for (PetscInt m = 0; m < N; ++m)
-          for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
-        E.Factor(beta);
-        for (PetscInt m = 0; m < N; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
-        E.Apply(beta, q);
-        for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
       }
   return PETSC_SUCCESS;
 }
