@@ -38,6 +38,7 @@ struct MaterialPointFields {
   const PetscReal     *half_width0     = nullptr; // bs dim: half-widths at seeding (m), if the particles have them
   const PetscReal     *volume0         = nullptr; // else the volume at seeding, m^3
   PetscInt             dim             = 3;       // spatial dimension of the run
+  PetscReal            cell_size       = 0;       // m: the background grid's cell size in x; 0 without a grid (the point driver)
   PetscReal            time            = 0;       // t_{n+1}, s
 };
 

@@ -125,10 +125,11 @@ struct RegularizationFields {
   const PetscReal *half_width0 = nullptr; // bs dim, the particle half-widths at seeding (m), if the particles have them
   const PetscReal *volume0     = nullptr; // else the volume at seeding (the point driver), m^3
   PetscInt         dim         = 0;
-  // The particle size h_p of the crack band, m.
-  PetscReal Size(PetscInt q) const { return half_width0 ? 2 * half_width0[dim * q] : std::pow(volume0[q], 1.0 / dim); }
+  PetscReal        band_length = 0; // -MAT_crack_band_length cell: the cell size (m); 0: the particle's size
+  // The length h of the crack band, m: the particle's size, or the cell's.
+  PetscReal Size(PetscInt q) const { return band_length > 0 ? band_length : half_width0 ? 2 * half_width0[dim * q] : std::pow(volume0[q], 1.0 / dim); }
 
-  PetscErrorCode Get(const MaterialPointFields &mp)
+  PetscErrorCode Get(const MaterialPointFields &mp, bool band_on_cell)
   {
     PetscFunctionBeginUser;
     if (!mp.state->Has(kNonlocalSource)) PetscFunctionReturn(PETSC_SUCCESS); // no material regularises
@@ -142,6 +143,8 @@ struct RegularizationFields {
     half_width0 = mp.half_width0;
     volume0     = mp.volume0;
     dim         = mp.dim;
+    band_length = band_on_cell ? mp.cell_size : 0;
+    PetscCheck(!band_on_cell || band_length > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-<material>_crack_band_length cell needs a background grid; this driver has none (use particle)");
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
@@ -192,6 +195,7 @@ public:
   Regularization regularization        = Regularization::None;
   PetscReal      regularization_length = 0;           // ell, m (nonlocal)
   PetscReal      fracture_energy       = 0;           // G_f, J/m^2 (crack_band)
+  PetscBool      band_on_cell          = PETSC_FALSE; // crack_band: the band's length h is the cell size, not the particle's
   PetscBool      tepla_damage          = PETSC_FALSE; // TEPLA-F with the accumulated damage D
 
   PetscReal NonlocalLength() const override { return regularization == Regularization::Nonlocal ? regularization_length : 0; }
@@ -270,6 +274,15 @@ public:
       PetscBool set_length, set_energy;
       PetscCall(PetscOptionsReal("-regularization_length", "Material length ell of the nonlocal average: radius of the weight (1 - r^2/ell^2)^2 per direction (m), > 0", "", regularization_length, &regularization_length, &set_length));
       PetscCall(PetscOptionsReal("-fracture_energy", "Fracture energy G_f of the crack band: energy per unit crack area dissipated by the softening (J/m^2), > 0", "", fracture_energy, &fracture_energy, &set_energy));
+      {
+        const char *const band_lengths[] = {"particle", "cell"};
+        int               band           = band_on_cell ? 1 : 0;
+        PetscCall(OptionsChoice(PetscOptionsObject, "-crack_band_length",
+                                "Length h of the crack band, u_p = h sum Delta eps_p: particle (the particle's size: a band one particle wide dissipates G_f) or cell (the grid's cell size: a band one "
+                                "cell wide dissipates G_f, whatever the particles per cell)",
+                                band_lengths, 2, &band, nullptr));
+        band_on_cell = band == 1 ? PETSC_TRUE : PETSC_FALSE;
+      }
       if (regularization == Regularization::Nonlocal) {
         PetscCheck(set_length, PETSC_COMM_WORLD, PETSC_ERR_USER_INPUT, "-%sregularization nonlocal needs -%sregularization_length (m, > 0)", P.c_str(), P.c_str());
         PetscCall(CheckRange(PETSC_COMM_WORLD, ("-" + P + "regularization_length").c_str(), regularization_length, 0, 1.0, PETSC_TRUE));
@@ -359,7 +372,7 @@ public:
     RegularizationFields reg;
     PetscFunctionBeginUser;
     PetscCall(state.Get(*mp.state));
-    PetscCall(reg.Get(mp));
+    PetscCall(reg.Get(mp, regularization == Regularization::CrackBand && band_on_cell));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     const PetscInt id                                                                                                = id_;
     for (PetscInt p = begin; p < end; ++p) {
@@ -395,7 +408,7 @@ public:
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(state.Get(*mp.state));
-    PetscCall(reg.Get(mp));
+    PetscCall(reg.Get(mp, regularization == Regularization::CrackBand && band_on_cell));
     // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
     // neighbours, so there the local increments are their own average
     const bool nonlocal = regularization == Regularization::Nonlocal && nonlocal_active_;
@@ -734,7 +747,9 @@ public:
     PetscCall(damage->View(viewer));
     for (auto &s : stability) PetscCall(s->View(viewer));
     if (regularization == Regularization::Nonlocal) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: nonlocal, length %g m (Delta D and Delta f averaged; TEPLA-F with the nonlocal damage)\n", (double)regularization_length));
-    if (regularization == Regularization::CrackBand) PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: crack_band, fracture energy %g J/m^2 (linear softening over u_f = 2 G_f / sigma_i after a criterion)\n", (double)fracture_energy));
+    if (regularization == Regularization::CrackBand)
+      PetscCall(PetscViewerASCIIPrintf(viewer, "  regularization: crack_band, fracture energy %g J/m^2 (linear softening over u_f = 2 G_f / sigma_i after a criterion), band length: the %s size\n", (double)fracture_energy,
+                                       band_on_cell ? "cell" : "particle"));
     if (tepla_damage) PetscCall(PetscViewerASCIIPrintf(viewer, "  TEPLA-F with the accumulated damage D\n"));
     PetscCall(PetscViewerASCIIPrintf(viewer, "  porosity: growth %s, nucleation %s (f_n %g, eps_n %g, s_n %g); initial porosity %g +- %g, damage %g +- %g, seed %" PetscInt_FMT "\n", porosity_growth ? "on" : "off", porosity_nucleation ? "on" : "off",
                                      (double)nucleation_fraction, (double)nucleation_strain, (double)nucleation_deviation, (double)porosity_mean, (double)porosity_deviation, (double)damage_mean, (double)damage_deviation, seed));

@@ -347,6 +347,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
 
     SwarmAccess views(mpm.swarm);
     PetscCall(GetMaterialPointFields(views, mpm.swarm, state, f));
+    f.cell_size = mpm.grid.h[0];
     for (auto &m : mpm.materials) PetscCall(m->InitializeState(f, 0, n));
     PetscCall(views.RestoreAll());
   }

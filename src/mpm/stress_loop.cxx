@@ -16,7 +16,8 @@ PetscErrorCode UpdateStress(MpmSolver &mpm)
   PetscFunctionBeginUser;
   PetscCall(PetscLogEventBegin(mpm.ev_stress, 0, 0, 0, 0));
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
-  f.time = mpm.time + mpm.dt;
+  f.time      = mpm.time + mpm.dt;
+  f.cell_size = mpm.grid.h[0];
   // A burning solid's products take its internal energy; the part of its stress work that the
   // update turned into temperature (dissipation, thermoelastic heating) is counted once
   // (coupling/burn.cxx), so the temperature change of the update is kept per particle.
@@ -63,7 +64,8 @@ PetscErrorCode ComputeInitialWaveSpeed(MpmSolver &mpm)
   SwarmAccess fields(mpm.swarm);
   PetscFunctionBeginUser;
   PetscCall(GetMaterialPointFields(fields, mpm.swarm, state, f));
-  f.time = mpm.time;
+  f.time      = mpm.time;
+  f.cell_size = mpm.grid.h[0];
   for (PetscInt id = 0; id < (PetscInt)mpm.materials.size(); ++id) {
     PetscCall(mpm.materials[id]->UpdateStress(f, id, 0.0));
     PetscCall(mpm.materials[id]->ComputeWaveSpeed(f, id));

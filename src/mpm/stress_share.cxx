@@ -132,6 +132,7 @@ PetscErrorCode ViewMessage(const MaterialPointFields &like, const std::vector<in
   g.n               = n;
   g.dim             = like.dim;
   g.time            = like.time;
+  g.cell_size       = like.cell_size;
   g.stress          = reinterpret_cast<PetscReal *>(at(b++));
   g.temperature     = reinterpret_cast<PetscReal *>(at(b++));
   g.wave_speed      = reinterpret_cast<PetscReal *>(at(b++));
