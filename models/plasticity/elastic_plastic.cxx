@@ -144,7 +144,6 @@ struct RegularizationFields {
     volume0     = mp.volume0;
     dim         = mp.dim;
     band_length = band_on_cell ? mp.cell_size : 0;
-    PetscCheck(!band_on_cell || band_length > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "-<material>_crack_band_length cell needs a background grid; this driver has none (use particle)");
     PetscFunctionReturn(PETSC_SUCCESS);
   }
 };
@@ -408,6 +407,8 @@ public:
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(state.Get(*mp.state));
+    PetscCheck(!(regularization == Regularization::CrackBand && band_on_cell) || mp.cell_size > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option -%s_crack_band_length cell needs a background grid, which this driver has not; valid here: particle",
+               name_.c_str());
     PetscCall(reg.Get(mp, regularization == Regularization::CrackBand && band_on_cell));
     // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
     // neighbours, so there the local increments are their own average

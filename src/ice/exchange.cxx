@@ -65,15 +65,27 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           if (back) c[ice.Offset(m, icef::temp_L)] += heat[m] / ice.materials[m].eos->cv;
           else ice.drag_energy_change -= V * c[ice.Offset(m, icef::rho_L)] * heat[m]; // the kinetic energy the drag removes, dropped
         }
-        // The heat exchange conserves sum_m rho_m c_v,m T_m, so a gas that the drag left below 0 K is
-        // checked after it: in a cell the steel fills, the solid's heat pays the deficit, and only
-        // what the exchange cannot cover falls back to the temperature form below
+        // The heat exchange conserves sum_m rho_m c_v,m T_m, and each new temperature is a weighted
+        // mean of the old ones (the matrix's rows sum to one and its inverse is non-negative). So a
+        // gas that the drag left below 0 K is judged after it: in a cell the steel fills, the
+        // steel's heat pays the deficit, and only what the exchange cannot cover falls back (the
+        // temperature form below). Where the deficit would instead take a material that was above
+        // 0 K to or below it (a cell whose gases dominate its heat capacity), the cell is done in
+        // the other order: the fallback first, then the exchange.
         for (PetscInt m = 0; m < N; ++m)
           for (PetscInt l = 0; l < N; ++l) beta[m][l] = ice.dt * c[ice.Offset(l, icef::theta)] * ice.exchange_H[l][m] * c[ice.Offset(m, icef::spvol)] / ice.materials[m].eos->cv;
         E.Factor(beta);
-        for (PetscInt m = 0; m < N; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
+        PetscReal T_drag[kIceMaxMaterials]; // after the drag heat, before the heat exchange
+        bool      negative = false;
+        for (PetscInt m = 0; m < N; ++m) {
+          q[m] = T_drag[m] = c[ice.Offset(m, icef::temp_L)];
+          negative         = negative || T_drag[m] <= 0;
+        }
         E.Apply(beta, q);
-        for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
+        bool fallback_first = false;
+        for (PetscInt m = 0; m < N; ++m) fallback_first = fallback_first || (negative && T_drag[m] > 0 && !(q[m] > 0));
+        if (!fallback_first)
+          for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
         for (PetscInt m = 0; m < ice.ngas; ++m) {
           PetscReal &T_L = c[ice.Offset(m, icef::temp_L)];
           if (T_L > 0) continue;
@@ -90,12 +102,18 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
           for (PetscInt l = ice.ngas; l < N; ++l) solid += c[ice.Offset(l, icef::theta)];
           PetscCall(PetscInfo(nullptr,
                               "Gas step %" PetscInt_FMT ": exchange fallback of %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT
-                              "): volume fraction %g, solids' %g; temperature %g K after the drag heat %g J/kg; the pressure source's work carried at the centre-of-mass velocity %g J/kg, c_v T %g J/kg\n",
-                              ice.step, ice.materials[m].name.c_str(), i, j, k, (double)c[ice.Offset(m, icef::theta)], (double)solid, (double)T_before, (double)heat[m], (double)carried[m], (double)(eos.cv * c[ice.Offset(m, icef::temp)])));
+                              "): volume fraction %g, solids' %g; temperature %g K after the drag heat %g J/kg, %g K after the heat exchange%s; the pressure source's work carried at the centre-of-mass velocity %g J/kg, c_v T %g J/kg\n",
+                              ice.step, ice.materials[m].name.c_str(), i, j, k, (double)c[ice.Offset(m, icef::theta)], (double)solid, (double)T_drag[m], (double)heat[m], (double)q[m],
+                              fallback_first ? " (not taken: it would cool another material below 0 K)" : "", (double)carried[m], (double)(eos.cv * c[ice.Offset(m, icef::temp)])));
           ice.exchange_fallback_energy += V * c[ice.Offset(m, icef::rho_L)] * (eos.cv * (T_L - T_before) + (eos.HasColdEnergy() ? cold_L - cold_before : 0));
           PetscCheck(T_L > 0 && std::isfinite(T_L), PETSC_COMM_SELF, PETSC_ERR_NOT_CONVERGED,
                      "Gas step %" PetscInt_FMT ": the compression work makes the temperature of material %s in cell (%" PetscInt_FMT ", %" PetscInt_FMT ", %" PetscInt_FMT ") %g K; reduce -ice_cfl", ice.step, ice.materials[m].name.c_str(), i, j, k,
                      (double)T_L);
+        }
+        if (fallback_first) { // the exchange of the temperatures the fallback left
+          for (PetscInt m = 0; m < N; ++m) q[m] = c[ice.Offset(m, icef::temp_L)];
+          E.Apply(beta, q);
+          for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
         }
       }
   return PETSC_SUCCESS;
