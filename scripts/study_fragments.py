@@ -5,7 +5,7 @@
                              [--cells 80,160,320] [--ppc 2,3,4] [--regularizations none,nonlocal,crack_band]
                              [--cases 80x2,160x2,160x3] [--ranks 2] [--out output/study] [--plot-only]
                              [--seeds N [--seed0 S]] [--launcher "srun -n {ranks}"] [--jobs K] [--cost-chart]
-                             [--extra "-mpm_shape_type bspline2"]
+                             [--extra="-mpm_shape_type bspline2"]
 
 For each regularisation (-steel_regularization: none, nonlocal with --length, crack_band with
 --fracture-energy) runs the scene at each cell count (2 x 2 particles per cell) and, at the middle
@@ -26,8 +26,9 @@ With --cost-chart it writes
   OUT/fragments_cost.csv, .png  per case: the count, first-failure time and expansion velocity at
                            first failure (mean and sample deviation over the seeds) against the
                            median stepping time of its runs, with the Grady band
---extra passes more burst options to every run. --launcher is the command before burst, {ranks}
-replaced (default: mpiexec for --ranks > 1); --jobs K
+--extra="..." passes more burst options to every run (with the =, so that argparse reads a value
+that starts with a dash). --launcher is the command before burst, {ranks} replaced (default: mpiexec
+for --ranks > 1); --jobs K
 runs K cases at once (for a launcher that submits to a cluster's queue and waits, e.g. srun).
 --quick runs 80 cells and 2 particles per cell without regularisation only (the suite's test
 study_fragments_quick) and checks it as tests/verify.py grady checks a fragmenting scene: the count within
@@ -194,7 +195,7 @@ def main():
     p.add_argument("--seed0", type=int, default=1, help="the first seed of --seeds")
     p.add_argument("--launcher", default="", help="command before burst, {ranks} replaced, e.g. 'srun -n {ranks}' (default: mpiexec)")
     p.add_argument("--jobs", type=int, default=1, help="runs at once")
-    p.add_argument("--extra", default="", help="more burst options for every run, e.g. '-steel_random_length 7.5e-4'")
+    p.add_argument("--extra", default="", help="more burst options for every run, given as --extra='-mpm_shape_type bspline2'")
     p.add_argument("--cost-chart", action="store_true", help="also the count, first-failure time and velocity (mean and deviation over the seeds) against "
                    "the run's cost, per case: OUT/fragments_cost.csv and .png")
     args = p.parse_args()
