@@ -198,6 +198,7 @@ public:
   PetscBool      tepla_damage          = PETSC_FALSE; // TEPLA-F with the accumulated damage D
 
   PetscReal NonlocalLength() const override { return regularization == Regularization::Nonlocal ? regularization_length : 0; }
+  bool      BandOnCell() const { return regularization == Regularization::CrackBand && band_on_cell; } // the crack band's length is the cell's
 
   PetscErrorCode SetFromOptions(PetscOptionItems *PetscOptionsObject) override
   {
@@ -371,7 +372,7 @@ public:
     RegularizationFields reg;
     PetscFunctionBeginUser;
     PetscCall(state.Get(*mp.state));
-    PetscCall(reg.Get(mp, regularization == Regularization::CrackBand && band_on_cell));
+    PetscCall(reg.Get(mp, BandOnCell()));
     auto [eps, rate, f, D, R, history, sigma_f, t_fail, dilatation, released, work, heat, elastic, failed, unstable] = state;
     const PetscInt id                                                                                                = id_;
     for (PetscInt p = begin; p < end; ++p) {
@@ -407,9 +408,8 @@ public:
     PetscFunctionBeginUser;
     if (dt <= 0) PetscFunctionReturn(ComputeWaveSpeed(mp, id)); // initial call: stress stays as seeded
     PetscCall(state.Get(*mp.state));
-    PetscCheck(!(regularization == Regularization::CrackBand && band_on_cell) || mp.cell_size > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option -%s_crack_band_length cell needs a background grid, which this driver has not; valid here: particle",
-               name_.c_str());
-    PetscCall(reg.Get(mp, regularization == Regularization::CrackBand && band_on_cell));
+    PetscCheck(!BandOnCell() || mp.cell_size > 0, PETSC_COMM_SELF, PETSC_ERR_USER_INPUT, "Option -%s_crack_band_length cell needs a background grid, which this driver has not; valid here: particle", name_.c_str());
+    PetscCall(reg.Get(mp, BandOnCell()));
     // nonlocal: averaged drivers when the average runs (a scene); the point driver has no
     // neighbours, so there the local increments are their own average
     const bool nonlocal = regularization == Regularization::Nonlocal && nonlocal_active_;

@@ -83,7 +83,8 @@ static PetscErrorCode CellExchange(IceSolver &ice, PetscScalar *a)
         }
         E.Apply(beta, q);
         bool fallback_first = false;
-        for (PetscInt m = 0; m < N; ++m) fallback_first = fallback_first || (negative && T_drag[m] > 0 && !(q[m] > 0));
+        if (negative)
+          for (PetscInt m = 0; m < N; ++m) fallback_first = fallback_first || (T_drag[m] > 0 && !(q[m] > 0));
         if (!fallback_first)
           for (PetscInt m = 0; m < N; ++m) c[ice.Offset(m, icef::temp_L)] = q[m];
         for (PetscInt m = 0; m < ice.ngas; ++m) {
