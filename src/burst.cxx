@@ -182,6 +182,7 @@ static PetscErrorCode Run(Simulation &sim)
   PetscFunctionBeginUser;
   PetscCall(MonitorSetUp(sim));
   if (!sim.restarted) { // a restart continues monitor.csv and the output series
+    if (sim.HasParticles() && sim.mpm.fragments.options.enabled) PetscCall(FragmentsRecordInitialMass(sim.mpm));
     PetscCall(Monitor(sim, PETSC_TRUE));
     PetscCall(PetscLogStagePush(sim.stage_output));
     PetscCall(WriteAllOutput(sim, false));

@@ -119,7 +119,7 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
   PetscCall(CheckRange(mpm.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", frag.options.min_particles, &frag.options.min_particles, nullptr));
   PetscCall(
-    PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the initial total mass (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
+    PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the counted materials' mass at t = 0 (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
   PetscCall(CheckRange(mpm.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
   {
     char     *names[32];
@@ -245,6 +245,27 @@ PetscErrorCode FragmentsExpansionVelocity(MpmSolver &mpm, PetscBool *enabled, Pe
   *enabled  = frag.options.grady;
   *velocity = 0;
   if (frag.options.grady) PetscCall(MeanRadialVelocity(mpm, velocity, nullptr));
+  PetscFunctionReturn(PETSC_SUCCESS);
+}
+
+// The total mass of the counted materials at t = 0: -fragments_min_mass_fraction is a fraction of it,
+// so the count does not depend on when the first search runs (-output_interval) nor on what burned.
+PetscErrorCode FragmentsRecordInitialMass(MpmSolver &mpm)
+{
+  Fragments       &frag = mpm.fragments;
+  SwarmAccess      fields(mpm.swarm);
+  const PetscInt  *material;
+  const PetscReal *m;
+  PetscInt         n;
+  PetscReal        mass_local = 0;
+  PetscFunctionBeginUser;
+  PetscCall(DMSwarmGetLocalSize(mpm.swarm, &n));
+  PetscCall(fields.Get(field::material, &material));
+  PetscCall(fields.Get(field::mass, &m));
+  for (PetscInt p = 0; p < n; ++p)
+    if (frag.options.Counts(material[p])) mass_local += m[p];
+  PetscCall(fields.RestoreAll());
+  PetscCallMPI(MPI_Allreduce(&mass_local, &frag.initial_mass, 1, MPIU_REAL, MPI_SUM, mpm.comm));
   PetscFunctionReturn(PETSC_SUCCESS);
 }
 
@@ -393,13 +414,9 @@ PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
       for (PetscInt e = d; e < 3; ++e, ++l)
         if (d < dim && e < dim) s[8 + l] += m[p] * x[dim * p + d] * x[dim * p + e];
   }
-  PetscReal mass_local = 0, mass_total = 0;
-  for (PetscInt p = 0; p < n; ++p)
-    if (frag.options.Counts(material[p])) mass_local += m[p];
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, mpm.comm));
-  PetscCallMPI(MPI_Allreduce(&mass_local, &mass_total, 1, MPIU_REAL, MPI_SUM, mpm.comm));
-  if (frag.initial_mass < 0) frag.initial_mass = mass_total;
+  if (frag.initial_mass < 0) PetscCall(FragmentsRecordInitialMass(mpm)); // a checkpoint that predates the record
   if (!mpm.rank) {
     frag.last_count        = 0;
     frag.largest_mass      = 0;

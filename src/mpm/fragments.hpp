@@ -10,7 +10,7 @@ struct FragmentOptions {
   PetscBool         enabled           = PETSC_FALSE;
   PetscReal         distance_factor   = 1.5;
   PetscInt          min_particles     = 4;
-  PetscReal         min_mass_fraction = 0; // of the initial total mass: a size threshold that does not change with the particle spacing
+  PetscReal         min_mass_fraction = 0; // of the counted materials' mass at t = 0: a size threshold that does not change with the particle spacing
   std::vector<char> counted;               // per material: part of the fragments (-fragments_materials; empty: all)
 
   bool Counts(PetscInt material) const { return counted.empty() || counted[material]; }
@@ -26,7 +26,7 @@ struct Fragments {
   FragmentOptions        options;
   PetscReal              fracture_velocity = -1, fracture_time = -1; // measured at the first failure
   PetscInt64             last_count   = 0;
-  PetscReal              initial_mass = -1; // total mass at the first search
+  PetscReal              initial_mass = -1; // total mass of the counted materials at t = 0 (kg)
   PetscReal              largest_mass = 0, total_intact_mass = 0;
   std::vector<PetscReal> counted_masses; // rank 0: the counted fragments' masses at the last search, kg
 

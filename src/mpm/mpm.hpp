@@ -328,6 +328,7 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm);
 PetscErrorCode FragmentsMonitor(MpmSolver &mpm);
 // The mean radial velocity of the fragments' materials about the -grady axis (enabled: -grady is on).
 PetscErrorCode FragmentsExpansionVelocity(MpmSolver &mpm, PetscBool *enabled, PetscReal *velocity);
+PetscErrorCode FragmentsRecordInitialMass(MpmSolver &mpm); // at t = 0: the base of -fragments_min_mass_fraction
 // table_path: where to write the fragment table (fragments.csv), or null.
 PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[]);
 PetscErrorCode FragmentsSummary(const MpmSolver &mpm, std::ostream &out);
