@@ -119,7 +119,7 @@ PetscErrorCode FragmentsSetUp(MpmSolver &mpm)
   PetscCall(CheckRange(mpm.comm, "-fragments_distance_factor", frag.options.distance_factor, 0, 10, PETSC_TRUE));
   PetscCall(PetscOptionsInt("-fragments_min_particles", "Smallest fragment counted in fragment_count (particles); smaller ones are debris, still listed", "", frag.options.min_particles, &frag.options.min_particles, nullptr));
   PetscCall(
-    PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, as a fraction of the counted materials' mass at t = 0 (-); applies with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
+    PetscOptionsReal("-fragments_min_mass_fraction", "Smallest fragment counted, a fraction of the counted materials' mass at t = 0 (-); with -fragments_min_particles", "", frag.options.min_mass_fraction, &frag.options.min_mass_fraction, nullptr));
   PetscCall(CheckRange(mpm.comm, "-fragments_min_mass_fraction", frag.options.min_mass_fraction, 0, 1, PETSC_FALSE));
   {
     char     *names[32];
