@@ -3,6 +3,9 @@
 // Each geometry fills the cells owned by this rank with particles_per_cell^dim particles per cell at
 // the centres of equal sub-cells. A particle takes the volume of its sub-cell and mass = density x
 // volume. Geometries are filled in the order listed; a point already claimed is not seeded twice.
+// -<name>_seeding polar fills a disk, cylinder or annulus with rings about its centre instead: the
+// surfaces are smooth rather than staircases of the grid, and the arrangement is the same at every
+// angle, so the lattice does not mark angles where a wall necks first.
 #include "mpm/geometry.hpp"
 #include "mpm/material_state.hpp"
 #include "util.hpp"
@@ -13,6 +16,7 @@ namespace burst {
 
 const char *const GeometryTypeNames[]    = {"box", "disk", "cylinder", "annulus", "sphere"};
 const char *const PressureSurfaceNames[] = {"none", "inner", "outer"};
+const char *const SeedingNames[]         = {"lattice", "polar"};
 
 PetscReal LoadCurve::Evaluate(PetscReal t) const
 {
@@ -133,6 +137,9 @@ PetscErrorCode ReadGeometries(MpmSolver &mpm)
     PetscCall(PetscOptionsReal("-inner_radius", "Annulus inner radius (m)", "", g->inner_radius, &g->inner_radius, nullptr));
     PetscCall(OptionsRealVector(PetscOptionsObject, "-angle_range", "Sector of a disk/annulus/cylinder: start,end angle in degrees (0,90 for a quarter)", g->angle_range, 2, nullptr));
     PetscCall(PetscOptionsInt("-particles_per_cell", "Particles per cell in each direction, >= 1", "", g->particles_per_cell, &g->particles_per_cell, nullptr));
+    int seeding = 0;
+    PetscCall(OptionsChoice(PetscOptionsObject, "-seeding", "Particle arrangement: lattice (sub-cell centres) or polar (rings about -center spaced cell/particles_per_cell; disk, cylinder, annulus)", SeedingNames, 2, &seeding, nullptr));
+    g->seeding = (Seeding)seeding;
     PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s), each component in [-1e5, 1e5]", g->velocity, dim, nullptr));
     PetscCall(PetscOptionsReal("-angular_velocity", "Initial rigid spin about -center (rad/s; about the z axis in 3-D) added to -velocity, default 0", "", g->angular_velocity, &g->angular_velocity, nullptr));
     PetscCall(PetscOptionsReal("-radial_velocity", "Initial radial velocity added to -velocity (m/s), in [-1e5, 1e5]", "", g->radial_velocity, &g->radial_velocity, nullptr));
@@ -161,6 +168,9 @@ PetscErrorCode ReadGeometries(MpmSolver &mpm)
       const PetscInt d0 = g->type == GeometryType::Box ? 0 : 2;
       for (PetscInt d = d0; d < dim; ++d) PetscCheck(g->upper[d] > g->lower[d], mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%supper must exceed -%slower in direction %" PetscInt_FMT, names[gi], P, P, d);
     }
+    PetscCheck(g->seeding == Seeding::Lattice || g->type == GeometryType::Disk || g->type == GeometryType::Cylinder || g->type == GeometryType::Annulus, mpm.comm, PETSC_ERR_USER_INPUT,
+               "Option -%sseeding polar needs -%stype disk, cylinder or annulus (the object is a %s); valid: lattice, polar", P, P, GeometryTypeNames[(int)g->type]);
+    PetscCheck(g->seeding == Seeding::Lattice || !mpm.axisymmetric, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sseeding polar is for the x-y plane; an axisymmetric run (-axisymmetric) takes lattice", P);
     PetscCheck(g->type != GeometryType::Disk || dim == 2, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%stype disk is 2-D; in 3-D use cylinder or sphere", names[gi], P);
     PetscCheck(g->angle_range[1] > g->angle_range[0] && g->angle_range[1] - g->angle_range[0] <= 360, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sangle_range: need start < end <= start + 360 (degrees)", P);
     if (g->pressure_surface != PressureSurface::None) {
@@ -180,6 +190,8 @@ struct SeedPoint {
   PetscReal  x[3];
   PetscInt   geometry;
   PetscInt64 id; // from (global cell, geometry, sub-cell): the same on any number of ranks
+  // polar seeding: the particle's volume, half-widths and radial depth (0: the lattice's sub-cell)
+  PetscReal volume = 0, half_width[3] = {0, 0, 0}, depth = 0;
 };
 
 PetscErrorCode SeedParticles(MpmSolver &mpm)
@@ -231,9 +243,10 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
       for (PetscInt i = xs[0]; i < ce[0]; ++i) {
         const PetscInt cell[3] = {i, j, k};
         for (PetscInt gi = 0; gi < (PetscInt)mpm.geometries.size(); ++gi) {
-          const Geometry &geo  = *mpm.geometries[gi];
-          const PetscInt  ppc  = geo.particles_per_cell;
-          const PetscInt  nsub = dim == 2 ? ppc * ppc : ppc * ppc * ppc;
+          const Geometry &geo = *mpm.geometries[gi];
+          if (geo.seeding == Seeding::Polar) continue;
+          const PetscInt ppc  = geo.particles_per_cell;
+          const PetscInt nsub = dim == 2 ? ppc * ppc : ppc * ppc * ppc;
           for (PetscInt s = 0; s < nsub; ++s) {
             const PetscInt sub[3] = {s % ppc, (s / ppc) % ppc, s / (ppc * ppc)};
             SeedPoint      pt;
@@ -251,10 +264,63 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
         }
       }
 
+  // Polar seeding: rings of radial spacing dr ~ h/ppc about the centre, each with points at arc spacing
+  // ~ h/ppc (and, in 3-D, layers along z at h_z/ppc); a point r, theta stands for the element
+  // r dr dtheta (dz), so the volumes add up to the object's exactly. The rank owning the grid cell
+  // that holds a point seeds it; ids count the points of the object in order after the lattice's ids.
+  mpm.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first id after the lattice's
+  for (PetscInt gi = 0; gi < (PetscInt)mpm.geometries.size(); ++gi) {
+    const Geometry &geo = *mpm.geometries[gi];
+    if (geo.seeding != Seeding::Polar) continue;
+    const PetscReal spacing = PetscMin(g.h[0], g.h[1]) / geo.particles_per_cell;
+    const PetscReal r0      = geo.type == GeometryType::Annulus ? geo.inner_radius : 0;
+    const PetscReal sector  = (geo.angle_range[1] - geo.angle_range[0]) * PETSC_PI / 180;
+    const PetscInt  nr      = PetscMax(1, (PetscInt)std::lround((geo.radius - r0) / spacing));
+    const PetscReal dr      = (geo.radius - r0) / nr;
+    PetscInt        nz      = 1;
+    PetscReal       dz = 1, z0 = 0;
+    if (dim == 3) {
+      nz = PetscMax(1, (PetscInt)std::lround((geo.upper[2] - geo.lower[2]) / (g.h[2] / geo.particles_per_cell)));
+      dz = (geo.upper[2] - geo.lower[2]) / nz;
+      z0 = geo.lower[2];
+    }
+    PetscInt64 index = 0;
+    for (PetscInt iz = 0; iz < nz; ++iz)
+      for (PetscInt ir = 0; ir < nr; ++ir) {
+        const PetscReal r      = r0 + (ir + 0.5) * dr;
+        const PetscInt  ntheta = PetscMax(1, (PetscInt)std::lround(r * sector / spacing));
+        const PetscReal dtheta = sector / ntheta;
+        for (PetscInt it = 0; it < ntheta; ++it, ++index) {
+          const PetscReal theta = geo.angle_range[0] * PETSC_PI / 180 + (it + 0.5) * dtheta;
+          SeedPoint       pt;
+          pt.x[0]   = geo.center[0] + r * std::cos(theta);
+          pt.x[1]   = geo.center[1] + r * std::sin(theta);
+          pt.x[2]   = dim == 3 ? z0 + (iz + 0.5) * dz : 0;
+          bool mine = true;
+          for (PetscInt d = 0; d < dim && mine; ++d) {
+            const PetscReal c = std::floor((pt.x[d] - g.lower[d]) / g.h[d]);
+            mine              = c >= xs[d] && c < ce[d];
+          }
+          if (!mine) continue;
+          bool claimed = false;
+          for (PetscInt gj = 0; gj < gi && !claimed; ++gj) claimed = mpm.geometries[gj]->Contains(pt.x);
+          if (claimed) continue;
+          pt.geometry = gi;
+          pt.id       = mpm.next_pid + index;
+          pt.volume   = r * dr * dtheta * dz;
+          pt.depth    = dr;
+          // a square (cube) of the element's volume: the particle domain of the GIMP shapes
+          const PetscReal side = std::pow(pt.volume, 1.0 / dim);
+          for (PetscInt d = 0; d < dim; ++d) pt.half_width[d] = 0.5 * side;
+          points.push_back(pt);
+        }
+      }
+    mpm.next_pid += index;
+  }
+
   const PetscInt n     = (PetscInt)points.size();
   PetscInt64     local = n;
   PetscCallMPI(MPI_Allreduce(&local, &mpm.total_particles, 1, MPIU_INT64, MPI_SUM, mpm.comm));
-  mpm.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first unused id
   PetscCheck(mpm.total_particles > 0, mpm.comm, PETSC_ERR_USER_INPUT, "The geometries seeded no particle inside the grid: check -<name>_center/-radius/-lower/-upper against -grid_lower/-grid_upper");
   PetscCall(DMSwarmSetLocalSizes(mpm.swarm, n, 16));
 
@@ -292,7 +358,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
     const Geometry &geo = *mpm.geometries[points[p].geometry];
     const PetscInt  ppc = geo.particles_per_cell;
     // axisymmetric: per radian, the sub-cell's area times its radius
-    const PetscReal sub_volume = g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (mpm.axisymmetric ? points[p].x[0] : 1.0);
+    const PetscReal sub_volume = points[p].volume > 0 ? points[p].volume : g.CellVolume() / (dim == 2 ? ppc * ppc : ppc * ppc * ppc) * (mpm.axisymmetric ? points[p].x[0] : 1.0);
     PetscReal       r_hat[3], r;
     geo.RadialDirection(points[p].x, r_hat, &r);
     pid[p]      = points[p].id;
@@ -316,7 +382,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
     for (PetscInt d = 0; d < dim; ++d) {
       x[p * dim + d]  = points[p].x[d];
       X0[p * dim + d] = points[p].x[d];
-      hw[p * dim + d] = 0.5 * g.h[d] / ppc;
+      hw[p * dim + d] = points[p].volume > 0 ? points[p].half_width[d] : 0.5 * g.h[d] / ppc;
       v[p * dim + d]  = geo.velocity[d] + geo.radial_velocity * r_hat[d];
       if (geo.angular_velocity != 0 && d < 2) v[p * dim + d] += geo.angular_velocity * (d == 0 ? -(points[p].x[1] - geo.center[1]) : points[p].x[0] - geo.center[0]);
       fext[p * dim + d] = 0;
@@ -332,6 +398,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
     if (geo.pressure_surface != PressureSurface::None) {
       PetscReal depth = g.h[0] / ppc;
       for (PetscInt d = 1; d < dim; ++d) depth = PetscMin(depth, g.h[d] / ppc);
+      if (points[p].depth > 0) depth = points[p].depth; // polar: exactly the first (last) ring
       const bool      inner = geo.pressure_surface == PressureSurface::Inner;
       const PetscReal dist  = inner ? r - (geo.type == GeometryType::Annulus ? geo.inner_radius : 0) : geo.radius - r;
       if (dist >= 0 && dist < depth && !(inner && geo.type != GeometryType::Annulus)) {
