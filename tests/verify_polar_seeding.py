@@ -5,11 +5,16 @@ particles written at t = 0 (particles_000000.h5):
       round-off (the lattice's staircase misses it by about a percent); every particle lies inside the
       annulus, on rings spaced (b - a)/n_r with n_r = round((b - a)/(h/ppc)); the points of a ring are
       evenly spaced in angle and half a spacing from the sector's edges.
+  The bore's pressure: a half annulus (-90 to 90 degrees) in free space under a constant pressure p
+      on its inner surface; after one step the x momentum is p a dt times the midpoint rule's sum of
+      cos(theta) over the inner ring, 2 (dtheta/2)/sin(dtheta/2), to 1e-10: the inner ring's areas
+      add up to the bore's arc (the lattice's staircase misses it by a few %).
   3-D (exploding_cylinder3d: wall annulus, cap and charge cylinders, all polar): each object's volume
       is its exact volume to round-off.
   --ranks 2: the same particles (ids and positions) as one rank.
 """
 import argparse
+import csv
 import os
 import subprocess
 import sys
@@ -79,6 +84,27 @@ def main():
             failures.append(f"{args.ranks} ranks seed other particles")
         else:
             check(f"{args.ranks} ranks: max |x - x(1 rank)| (m)", np.abs(x[o1] - two["coordinates"][o2]).max(), 0.0, failures)
+    # the pressure on the bore, one step from rest
+    impulse = {}
+    for arrangement in ("polar", "lattice"):
+        out = tempfile.mkdtemp()
+        cmd = [args.burst, "-options_file", deck2, "-wall_seeding", arrangement, "-wall_angle_range", "-90,90", "-grid_lower", "-0.1,-0.1",
+               "-grid_upper", "0.1,0.1", "-grid_cells", "80,80", "-wall_particles_per_cell", "2", "-bc_xmin", "free", "-bc_ymin", "free",
+               "-gas_time", "0,1", "-gas_value", "1e8,1e8", "-max_steps", "1", "-monitor_interval", "1", "-output_dir", out, "-progress", "false"]
+        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+        if proc.returncode:
+            sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
+            raise SystemExit(f"FAIL: burst exited with {proc.returncode}")
+        with open(os.path.join(out, "monitor.csv")) as f:
+            row = list(csv.DictReader(f))[-1]
+        impulse[arrangement] = float(row["momentum_x"]) / (1e8 * A * float(row["time"]))
+    spacing = 0.2 / 80 / 2
+    r_inner = A + 0.5 * (B - A) / max(1, round((B - A) / spacing))
+    dtheta = np.pi / max(1, round(r_inner * np.pi / spacing))
+    expected = 2 * (dtheta / 2) / np.sin(dtheta / 2)
+    print(f"  one step of 1e8 Pa on the bore of a half annulus: x momentum / (p a dt) = {impulse['polar']:.12f} polar, {impulse['lattice']:.6f} lattice, "
+          f"midpoint rule {expected:.12f}")
+    check("polar: |x impulse / (p a dt) - midpoint rule| / midpoint rule", abs(impulse["polar"] - expected) / expected, 1e-10, failures)
     # 3-D: three objects, each polar
     deck3 = "options/scenes/exploding_cylinder3d.opts"
     s3 = seed(args.burst, deck3, ["-grid_cells", "10,10,15", "-wall_seeding", "polar", "-cap_seeding", "polar", "-charge_seeding", "polar"])

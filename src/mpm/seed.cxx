@@ -138,7 +138,7 @@ PetscErrorCode ReadGeometries(MpmSolver &mpm)
     PetscCall(OptionsRealVector(PetscOptionsObject, "-angle_range", "Sector of a disk/annulus/cylinder: start,end angle in degrees (0,90 for a quarter)", g->angle_range, 2, nullptr));
     PetscCall(PetscOptionsInt("-particles_per_cell", "Particles per cell in each direction, >= 1", "", g->particles_per_cell, &g->particles_per_cell, nullptr));
     int seeding = 0;
-    PetscCall(OptionsChoice(PetscOptionsObject, "-seeding", "Particle arrangement: lattice (sub-cell centres) or polar (rings about -center spaced cell/particles_per_cell; disk, cylinder, annulus)", SeedingNames, 2, &seeding, nullptr));
+    PetscCall(OptionsChoice(PetscOptionsObject, "-seeding", "Particle arrangement; polar: rings about -center spaced cell/particles_per_cell (disk, cylinder, annulus)", SeedingNames, 2, &seeding, nullptr));
     g->seeding = (Seeding)seeding;
     PetscCall(OptionsRealVector(PetscOptionsObject, "-velocity", "Initial velocity (m/s), each component in [-1e5, 1e5]", g->velocity, dim, nullptr));
     PetscCall(PetscOptionsReal("-angular_velocity", "Initial rigid spin about -center (rad/s; about the z axis in 3-D) added to -velocity, default 0", "", g->angular_velocity, &g->angular_velocity, nullptr));
@@ -169,8 +169,8 @@ PetscErrorCode ReadGeometries(MpmSolver &mpm)
       for (PetscInt d = d0; d < dim; ++d) PetscCheck(g->upper[d] > g->lower[d], mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%supper must exceed -%slower in direction %" PetscInt_FMT, names[gi], P, P, d);
     }
     PetscCheck(g->seeding == Seeding::Lattice || g->type == GeometryType::Disk || g->type == GeometryType::Cylinder || g->type == GeometryType::Annulus, mpm.comm, PETSC_ERR_USER_INPUT,
-               "Option -%sseeding polar needs -%stype disk, cylinder or annulus (the object is a %s); valid: lattice, polar", P, P, GeometryTypeNames[(int)g->type]);
-    PetscCheck(g->seeding == Seeding::Lattice || !mpm.axisymmetric, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sseeding polar is for the x-y plane; an axisymmetric run (-axisymmetric) takes lattice", P);
+               "Option -%sseeding polar needs -%stype disk, cylinder or annulus (the object is a %s); valid here: lattice", P, P, GeometryTypeNames[(int)g->type]);
+    PetscCheck(g->seeding == Seeding::Lattice || !mpm.axisymmetric, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sseeding polar is for the x-y plane, not an axisymmetric run (-axisymmetric); valid here: lattice", P);
     PetscCheck(g->type != GeometryType::Disk || dim == 2, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%stype disk is 2-D; in 3-D use cylinder or sphere", names[gi], P);
     PetscCheck(g->angle_range[1] > g->angle_range[0] && g->angle_range[1] - g->angle_range[0] <= 360, mpm.comm, PETSC_ERR_USER_INPUT, "Option -%sangle_range: need start < end <= start + 360 (degrees)", P);
     if (g->pressure_surface != PressureSurface::None) {
@@ -191,7 +191,7 @@ struct SeedPoint {
   PetscInt   geometry;
   PetscInt64 id; // from (global cell, geometry, sub-cell): the same on any number of ranks
   // polar seeding: the particle's volume, half-widths and radial depth (0: the lattice's sub-cell)
-  PetscReal volume = 0, half_width[3] = {0, 0, 0}, depth = 0;
+  PetscReal volume = 0, half_width[3] = {0, 0, 0}, depth = 0, surface_scale = 1;
 };
 
 PetscErrorCode SeedParticles(MpmSolver &mpm)
@@ -267,39 +267,68 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
   // Polar seeding: rings of radial spacing dr ~ h/ppc about the centre, each with points at arc spacing
   // ~ h/ppc (and, in 3-D, layers along z at h_z/ppc); a point r, theta stands for the element
   // r dr dtheta (dz), so the volumes add up to the object's exactly. The rank owning the grid cell
-  // that holds a point seeds it; ids count the points of the object in order after the lattice's ids.
+  // that holds a point seeds it (the cell as particle migration finds it); ids count the points of the
+  // object in order after the lattice's ids. A rank visits only the layers and rings that cross its
+  // part of the grid, and counts the others' points for the ids.
   mpm.next_pid = (PetscInt64)g.cells[0] * g.cells[1] * (dim == 3 ? g.cells[2] : 1) * ngeom * max_sub; // first id after the lattice's
+  PetscReal box_lo[3], box_hi[3];                                                                     // this rank's part of the grid
+  for (PetscInt d = 0; d < dim; ++d) {
+    box_lo[d] = g.lower[d] + xs[d] * g.h[d];
+    box_hi[d] = g.lower[d] + ce[d] * g.h[d];
+  }
   for (PetscInt gi = 0; gi < (PetscInt)mpm.geometries.size(); ++gi) {
     const Geometry &geo = *mpm.geometries[gi];
     if (geo.seeding != Seeding::Polar) continue;
     const PetscReal spacing = PetscMin(g.h[0], g.h[1]) / geo.particles_per_cell;
     const PetscReal r0      = geo.type == GeometryType::Annulus ? geo.inner_radius : 0;
     const PetscReal sector  = (geo.angle_range[1] - geo.angle_range[0]) * PETSC_PI / 180;
-    const PetscInt  nr      = PetscMax(1, (PetscInt)std::lround((geo.radius - r0) / spacing));
-    const PetscReal dr      = (geo.radius - r0) / nr;
-    PetscInt        nz      = 1;
+    const PetscReal rings = (geo.radius - r0) / spacing, layers = dim == 3 ? (geo.upper[2] - geo.lower[2]) / (g.h[2] / geo.particles_per_cell) : 1;
+    // an object far larger than the grid (a radius in mm typed as m) would be counted point by point
+    PetscCheck(rings * layers < 1e9 && geo.radius * sector / spacing * layers < 1e12, mpm.comm, PETSC_ERR_USER_INPUT, "Geometry '%s': -%s_seeding polar would place %.3g rings of %.3g points at most: check -%s_radius against the grid",
+               geo.name.c_str(), geo.name.c_str(), (double)(rings * layers), (double)(geo.radius * sector / spacing), geo.name.c_str());
+    const PetscInt  nr = PetscMax(1, (PetscInt)std::lround(rings));
+    const PetscReal dr = (geo.radius - r0) / nr;
+    PetscInt        nz = 1;
     PetscReal       dz = 1, z0 = 0;
     if (dim == 3) {
-      nz = PetscMax(1, (PetscInt)std::lround((geo.upper[2] - geo.lower[2]) / (g.h[2] / geo.particles_per_cell)));
+      nz = PetscMax(1, (PetscInt)std::lround(layers));
       dz = (geo.upper[2] - geo.lower[2]) / nz;
       z0 = geo.lower[2];
     }
-    PetscInt64 index = 0;
-    for (PetscInt iz = 0; iz < nz; ++iz)
+    // the distance from the centre to the nearest and farthest points of this rank's part (in-plane)
+    PetscReal near2 = 0, far2 = 0;
+    for (PetscInt d = 0; d < 2; ++d) {
+      const PetscReal lo = box_lo[d] - geo.center[d], hi = box_hi[d] - geo.center[d];
+      const PetscReal nd = lo > 0 ? lo : (hi < 0 ? -hi : 0);
+      near2 += nd * nd;
+      far2 += PetscMax(lo * lo, hi * hi);
+    }
+    const PetscReal near = std::sqrt(near2), far = std::sqrt(far2);
+    PetscInt64      index = 0;
+    for (PetscInt iz = 0; iz < nz; ++iz) {
+      const PetscReal z          = z0 + (iz + 0.5) * dz;
+      const bool      layer_here = dim < 3 || (z >= box_lo[2] - dz && z <= box_hi[2] + dz);
       for (PetscInt ir = 0; ir < nr; ++ir) {
         const PetscReal r      = r0 + (ir + 0.5) * dr;
         const PetscInt  ntheta = PetscMax(1, (PetscInt)std::lround(r * sector / spacing));
         const PetscReal dtheta = sector / ntheta;
+        if (!layer_here || r < near - dr || r > far + dr) { // no point of this ring is in this rank's part
+          index += ntheta;
+          continue;
+        }
         for (PetscInt it = 0; it < ntheta; ++it, ++index) {
           const PetscReal theta = geo.angle_range[0] * PETSC_PI / 180 + (it + 0.5) * dtheta;
           SeedPoint       pt;
           pt.x[0]   = geo.center[0] + r * std::cos(theta);
           pt.x[1]   = geo.center[1] + r * std::sin(theta);
-          pt.x[2]   = dim == 3 ? z0 + (iz + 0.5) * dz : 0;
+          pt.x[2]   = dim == 3 ? z : 0;
           bool mine = true;
           for (PetscInt d = 0; d < dim && mine; ++d) {
-            const PetscReal c = std::floor((pt.x[d] - g.lower[d]) / g.h[d]);
-            mine              = c >= xs[d] && c < ce[d];
+            if (!(pt.x[d] >= g.lower[d] && pt.x[d] <= g.upper[d])) mine = false; // outside the grid: not seeded
+            else {
+              const PetscInt c = PetscMin((PetscInt)std::floor((pt.x[d] - g.lower[d]) / g.h[d]), g.cells[d] - 1);
+              mine             = c >= xs[d] && c < ce[d];
+            }
           }
           if (!mine) continue;
           bool claimed = false;
@@ -309,12 +338,18 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
           pt.id       = mpm.next_pid + index;
           pt.volume   = r * dr * dtheta * dz;
           pt.depth    = dr;
-          // a square (cube) of the element's volume: the particle domain of the GIMP shapes
-          const PetscReal side = std::pow(pt.volume, 1.0 / dim);
-          for (PetscInt d = 0; d < dim; ++d) pt.half_width[d] = 0.5 * side;
+          // the particle domain of the GIMP shapes: a square of the element's in-plane area (dz deep
+          // in 3-D), no wider than a cell (the shapes' three-node stencil)
+          const PetscReal side = std::sqrt(r * dr * dtheta);
+          for (PetscInt d = 0; d < 2; ++d) pt.half_width[d] = PetscMin(0.5 * side, 0.5 * g.h[d]);
+          if (dim == 3) pt.half_width[2] = PetscMin(0.5 * dz, 0.5 * g.h[2]);
+          // a pressure surface loads the inner (outer) ring with the arc of the surface itself
+          if (geo.pressure_surface == PressureSurface::Inner && ir == 0) pt.surface_scale = r0 / r;
+          if (geo.pressure_surface == PressureSurface::Outer && ir == nr - 1) pt.surface_scale = geo.radius / r;
           points.push_back(pt);
         }
       }
+    }
     mpm.next_pid += index;
   }
 
@@ -393,8 +428,9 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
       sigma[9 * p + a] = 0;
       L[9 * p + a]     = 0;
     }
-    // Pressure-loaded surface: particles in a band one sub-cell deep carry area = volume / depth,
-    // so the band's areas add up to the surface area.
+    // Pressure-loaded surface: particles in a band one sub-cell deep carry area = volume / depth, so
+    // the band's areas add up to the surface area (the lattice: to within the band's curvature, about
+    // depth / (2 radius); polar: exactly, with the ring's arc scaled to the surface's radius).
     if (geo.pressure_surface != PressureSurface::None) {
       PetscReal depth = g.h[0] / ppc;
       for (PetscInt d = 1; d < dim; ++d) depth = PetscMin(depth, g.h[d] / ppc);
@@ -403,7 +439,7 @@ PetscErrorCode SeedParticles(MpmSolver &mpm)
       const PetscReal dist  = inner ? r - (geo.type == GeometryType::Annulus ? geo.inner_radius : 0) : geo.radius - r;
       if (dist >= 0 && dist < depth && !(inner && geo.type != GeometryType::Annulus)) {
         curve[p] = geo.load_curve;
-        for (PetscInt d = 0; d < dim; ++d) area[p * dim + d] = (inner ? -1.0 : 1.0) * r_hat[d] * sub_volume / depth;
+        for (PetscInt d = 0; d < dim; ++d) area[p * dim + d] = (inner ? -1.0 : 1.0) * r_hat[d] * sub_volume / depth * points[p].surface_scale;
       }
     }
   }
