@@ -41,7 +41,7 @@ DEFAULT_LAUNCHER = "mpiexec --allow-run-as-root --oversubscribe -x OMP_NUM_THREA
 
 # name: (base options, steps, weak-scaling options for n ranks)
 SCENES = {
-    "cylinder": (["-options_file", "options/scenes/cylinder2d_4340.opts", "-output_interval", "0", "-output_grid", "false", "-fragments", "false",
+    "cylinder": (["-options_file", "options/scenes/cylinder2d_4340.opts", "-wall_seeding", "lattice", "-grid_upper", "0.12,0.12", "-output_interval", "0", "-output_grid", "false", "-fragments", "false",
                   "-progress", "false", "-monitor_interval", "100000", "-final_time", "1.2e-4"], 300,
                  lambda n: ["-grid_cells", f"{round(160 * math.sqrt(n))},{round(160 * math.sqrt(n))}"]),
     "taylor": (["-options_file", "tests/decks/taylor3d.opts"], 150,

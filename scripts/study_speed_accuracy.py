@@ -102,7 +102,7 @@ def main():
                     extra = ["-grid_cells", f"{n},{n}", "-mpm_dt", "2e-5"]
                 elif prob == "cylinder":
                     deck = "options/scenes/cylinder2d_4340.opts"
-                    extra = ["-grid_cells", f"{n},{n}"]
+                    extra = ["-grid_cells", f"{n},{n}", "-wall_seeding", "lattice", "-grid_upper", "0.12,0.12", "-final_time", "1.2e-4"]  # the form its figures were measured on
                 else:
                     deck = "options/scenes/taylor.opts"
                     extra = ["-taylor_cells_per_diameter", str(n), "-mpm_cfl", "0.3" if transfer == "apic" and shape == "linear" else "0.4"]

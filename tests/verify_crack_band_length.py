@@ -20,7 +20,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from verify import ROOT, check, finish, run  # noqa: E402
 
 DECK = os.path.join(ROOT, "options", "scenes", "cylinder2d_4340.opts")
-COMMON = ["-grid_cells", "60,60", "-wall_particles_per_cell", "3", "-final_time", "1e-4", "-output_interval", "0"]
+# the lattice: every particle h/3 wide, so the particle band with G_f/3 is the cell band exactly
+COMMON = ["-grid_upper", "0.12,0.12", "-grid_cells", "60,60", "-wall_seeding", "lattice", "-wall_particles_per_cell", "3", "-final_time", "1e-4", "-output_interval", "0"]
 
 
 def case(burst, length, energy, ranks=1, extra=()):

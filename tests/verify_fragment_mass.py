@@ -44,7 +44,7 @@ def main():
     for interval in (0, 1):
         with tempfile.TemporaryDirectory() as out:
             cmd = [args.burst, "-options_file", "options/scenes/ring2d.opts", "-grid_cells", f"{cells},{cells}", "-grid_upper", f"{upper},{upper}",
-                   "-ring_particles_per_cell", str(ppc), "-final_time", "2e-5", "-output_dir", out, "-progress", "false",
+                   "-ring_particles_per_cell", str(ppc), "-ring_seeding", "lattice", "-final_time", "2e-5", "-output_dir", out, "-progress", "false",
                    "-output_interval", str(interval), "-output_grid", "false"]
             if args.ranks > 1:
                 cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(args.ranks)] + cmd

@@ -54,10 +54,10 @@ def main():
     args = p.parse_args()
     failures = []
     deck2 = "options/scenes/cylinder2d_4340.opts"
-    base = ["-grid_cells", f"{args.cells},{args.cells}", "-wall_particles_per_cell", str(args.ppc)]
+    base = ["-grid_upper", "0.12,0.12", "-grid_cells", f"{args.cells},{args.cells}", "-wall_particles_per_cell", str(args.ppc)]
     area = np.pi / 4 * (B * B - A * A)
     polar = seed(args.burst, deck2, base + ["-wall_seeding", "polar"])
-    lattice = seed(args.burst, deck2, base)
+    lattice = seed(args.burst, deck2, base + ["-wall_seeding", "lattice"])
     x, vol = polar["coordinates"], polar["volume"]
     r, theta = np.hypot(x[:, 0], x[:, 1]), np.arctan2(x[:, 1], x[:, 0])
     print(f"cylinder2d_4340, {args.cells} cells, {args.ppc} x {args.ppc}: {len(vol)} polar particles (lattice {len(lattice['volume'])})")

@@ -106,7 +106,8 @@ static PetscErrorCode TrackedParticle(Simulation &sim, PetscReal xu[9])
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Allreduce(local, global, 10, MPIU_REAL, MPI_SUM, sim.comm));
   PetscCheck(global[9] == 1, sim.comm, PETSC_ERR_USER_INPUT,
-             "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (ids are ((cell x geometries + geometry) x sub-cells + sub-cell), below %" PetscInt64_FMT "; see the id field of the output)", sim.output.track_pid, sim.mpm.next_pid);
+             "Option -monitor_track_pid %" PetscInt_FMT ": no particle has this id (lattice ids are ((cell x geometries + geometry) x sub-cells + sub-cell), polar ones follow them, all below %" PetscInt64_FMT "; see the id field of the output)",
+             sim.output.track_pid, sim.mpm.next_pid);
   for (int k = 0; k < 9; ++k) xu[k] = global[k];
   PetscFunctionReturn(PETSC_SUCCESS);
 }
