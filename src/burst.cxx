@@ -181,8 +181,12 @@ static PetscErrorCode Run(Simulation &sim)
   PetscLogDouble t0, t1;
   PetscFunctionBeginUser;
   PetscCall(MonitorSetUp(sim));
+  if (sim.HasParticles() && sim.mpm.fragments.options.enabled && sim.mpm.fragments.initial_mass < 0) { // a restart reads it from its checkpoint
+    PetscCall(FragmentsRecordInitialMass(sim.mpm));
+    if (sim.restarted) // a checkpoint written with -fragments off
+      PetscCall(PetscPrintf(sim.comm, "Note: the checkpoint holds no initial mass for -fragments_min_mass_fraction; taking the mass at t = %g s, %g kg\n", (double)sim.mpm.time, (double)sim.mpm.fragments.initial_mass));
+  }
   if (!sim.restarted) { // a restart continues monitor.csv and the output series
-    if (sim.HasParticles() && sim.mpm.fragments.options.enabled) PetscCall(FragmentsRecordInitialMass(sim.mpm));
     PetscCall(Monitor(sim, PETSC_TRUE));
     PetscCall(PetscLogStagePush(sim.stage_output));
     PetscCall(WriteAllOutput(sim, false));

@@ -7,16 +7,14 @@ and at every step (-output_interval 1). The seeded mass is counted here from the
 sub-cell centres inside the annulus, each with density x sub-cell area.
 """
 import argparse
-import json
 import os
-import subprocess
 import sys
 import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from verify import check, finish  # noqa: E402
+from verify import check, finish, run  # noqa: E402
 
 DENSITY, INNER, OUTER = 7830.0, 0.0508, 0.05715  # ring2d.opts, steel_4340_paper.opts
 
@@ -43,17 +41,9 @@ def main():
     failures = []
     for interval in (0, 1):
         with tempfile.TemporaryDirectory() as out:
-            cmd = [args.burst, "-options_file", "options/scenes/ring2d.opts", "-grid_cells", f"{cells},{cells}", "-grid_upper", f"{upper},{upper}",
-                   "-ring_particles_per_cell", str(ppc), "-ring_seeding", "lattice", "-final_time", "2e-5", "-output_dir", out, "-progress", "false",
-                   "-output_interval", str(interval), "-output_grid", "false"]
-            if args.ranks > 1:
-                cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(args.ranks)] + cmd
-            proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-            if proc.returncode:
-                sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
-                raise SystemExit(f"FAIL: burst exited with {proc.returncode}")
-            with open(os.path.join(out, "summary.json")) as f:
-                s = json.load(f)
+            s = run(args.burst, "options/scenes/ring2d.opts", out,
+                    ["-grid_cells", f"{cells},{cells}", "-grid_upper", f"{upper},{upper}", "-ring_particles_per_cell", str(ppc), "-ring_seeding", "lattice",
+                     "-final_time", "2e-5", "-output_interval", str(interval), "-output_grid", "false"], ranks=args.ranks)
         left = s["intact_mass"]
         print(f"ring2d, {cells} cells, -output_interval {interval}: initial_mass {s['initial_mass']:.9g} kg, seeded {expected:.9g} kg, "
               f"intact at the end {left:.6g} kg")

@@ -14,9 +14,7 @@ particles written at t = 0 (particles_000000.h5):
   --ranks 2: the same particles (ids and positions) as one rank.
 """
 import argparse
-import csv
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -26,23 +24,23 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
-from verify import check, finish  # noqa: E402
+from verify import check, finish, monitor, run  # noqa: E402
 
 A, B = 0.0508, 0.05715  # the wall's inner and outer radii (m)
 
 
+def lround(x):
+    """C's lround (halves away from zero), as seed.cxx counts rings and points; Python's round() halves to even."""
+    return int(np.floor(x + 0.5))
+
+
 def seed(burst, deck, extra, ranks=1):
-    out = tempfile.mkdtemp()
-    cmd = [burst, "-options_file", deck, "-output_dir", out, "-progress", "false", "-max_steps", "0", *extra]
-    if ranks > 1:
-        cmd = ["mpiexec", "--allow-run-as-root", "--oversubscribe", "-n", str(ranks)] + cmd
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-    if proc.returncode:
-        sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
-        raise SystemExit(f"FAIL: burst exited with {proc.returncode}")
-    with h5py.File(os.path.join(out, "particles_000000.h5")) as f:
-        p = f["particles"]
-        return {k: p[k][:] for k in ("coordinates", "volume", "id", "material")}
+    """The particles at t = 0 (-max_steps 0)."""
+    with tempfile.TemporaryDirectory() as out:
+        run(burst, deck, out, ["-max_steps", "0", *extra], ranks=ranks)
+        with h5py.File(os.path.join(out, "particles_000000.h5")) as f:
+            p = f["particles"]
+            return {k: p[k][:] for k in ("coordinates", "volume", "id", "material")}
 
 
 def main():
@@ -65,7 +63,7 @@ def main():
     print(f"  (the lattice's staircase: {abs(lattice['volume'].sum() - area) / area:.3e})")
     check("polar: the farthest particle outside the annulus (m)", max(0.0, (A - r).max(), (r - B).max()), 0.0, failures)
     h = 0.12 / args.cells
-    nr = max(1, round((B - A) / (h / args.ppc)))
+    nr = max(1, lround((B - A) / (h / args.ppc)))
     radii = A + (np.arange(nr) + 0.5) * (B - A) / nr
     ring = np.abs(r[:, None] - radii[None, :]).argmin(axis=1)
     check("polar: |r - nearest ring radius| (m)", np.abs(r - radii[ring]).max(), 1e-12 * B, failures)
@@ -87,20 +85,15 @@ def main():
     # the pressure on the bore, one step from rest
     impulse = {}
     for arrangement in ("polar", "lattice"):
-        out = tempfile.mkdtemp()
-        cmd = [args.burst, "-options_file", deck2, "-wall_seeding", arrangement, "-wall_angle_range", "-90,90", "-grid_lower", "-0.1,-0.1",
-               "-grid_upper", "0.1,0.1", "-grid_cells", "80,80", "-wall_particles_per_cell", "2", "-bc_xmin", "free", "-bc_ymin", "free",
-               "-gas_time", "0,1", "-gas_value", "1e8,1e8", "-max_steps", "1", "-monitor_interval", "1", "-output_dir", out, "-progress", "false"]
-        proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
-        if proc.returncode:
-            sys.stdout.write(proc.stdout[-3000:] + proc.stderr[-3000:])
-            raise SystemExit(f"FAIL: burst exited with {proc.returncode}")
-        with open(os.path.join(out, "monitor.csv")) as f:
-            row = list(csv.DictReader(f))[-1]
+        with tempfile.TemporaryDirectory() as out:
+            run(args.burst, deck2, out, ["-wall_seeding", arrangement, "-wall_angle_range", "-90,90", "-grid_lower", "-0.1,-0.1", "-grid_upper", "0.1,0.1",
+                                         "-grid_cells", "80,80", "-wall_particles_per_cell", "2", "-bc_xmin", "free", "-bc_ymin", "free", "-gas_time", "0,1",
+                                         "-gas_value", "1e8,1e8", "-max_steps", "1", "-monitor_interval", "1"])
+            row = {k: v[-1] for k, v in monitor(out).items()}
         impulse[arrangement] = float(row["momentum_x"]) / (1e8 * A * float(row["time"]))
     spacing = 0.2 / 80 / 2
-    r_inner = A + 0.5 * (B - A) / max(1, round((B - A) / spacing))
-    dtheta = np.pi / max(1, round(r_inner * np.pi / spacing))
+    r_inner = A + 0.5 * (B - A) / max(1, lround((B - A) / spacing))
+    dtheta = np.pi / max(1, lround(r_inner * np.pi / spacing))
     expected = 2 * (dtheta / 2) / np.sin(dtheta / 2)
     print(f"  one step of 1e8 Pa on the bore of a half annulus: x momentum / (p a dt) = {impulse['polar']:.12f} polar, {impulse['lattice']:.6f} lattice, "
           f"midpoint rule {expected:.12f}")

@@ -416,10 +416,6 @@ PetscErrorCode FindFragments(MpmSolver &mpm, const char table_path[])
   }
   PetscCall(fields.RestoreAll());
   PetscCallMPI(MPI_Reduce(sums.data(), total.data(), nsum * nfragments, MPIU_REAL, MPI_SUM, 0, mpm.comm));
-  if (frag.initial_mass < 0) { // restarted from a checkpoint without it (written with -fragments off, or by an older burst)
-    PetscCall(FragmentsRecordInitialMass(mpm));
-    PetscCall(PetscPrintf(mpm.comm, "Note: the checkpoint holds no initial mass for -fragments_min_mass_fraction; taking the mass at t = %g s, %g kg\n", (double)mpm.time, (double)frag.initial_mass));
-  }
   if (!mpm.rank) {
     frag.last_count        = 0;
     frag.largest_mass      = 0;
