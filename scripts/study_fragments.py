@@ -45,6 +45,7 @@ import csv
 import json
 import os
 import shlex
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -292,7 +293,7 @@ def plot_cost(rows, png, title, ranks):
         fm, fs = mean_sd(counts)
         tm, ts = mean_sd(times)
         vm, vs = mean_sd(speeds)
-        out.append(dict(regularization=reg, cells=cells, particles_per_cell=ppc, runs=len(sel), ranks=ranks, stepping_s_median=walls[len(walls) // 2],
+        out.append(dict(regularization=reg, cells=cells, particles_per_cell=ppc, runs=len(sel), ranks=ranks, stepping_s_median=statistics.median(walls),
                         stepping_s_min=walls[0], stepping_s_max=walls[-1], particles=sel[0]["particles"], fragments_mean=fm, fragments_sd=fs,
                         grady_shear_mean=mean_sd([float(r["grady_shear"]) for r in sel])[0], grady_tension_mean=mean_sd([float(r["grady_tension"]) for r in sel])[0],
                         fracture_time_us_mean=tm, fracture_time_us_sd=ts, fracture_velocity_mean=vm, fracture_velocity_sd=vs))

@@ -82,7 +82,7 @@ def main():
     p.add_argument("--out", default=os.path.join(sf.ROOT, "doc/figures"))
     p.add_argument("--plot-only", action="store_true")
     p.add_argument("--launcher", default="", help="command before burst, {ranks} replaced (default: mpiexec for --ranks > 1)")
-    # the form doc/failure.md's ring table was measured in (the scene ships rings over 0.15 m to 240 us)
+    # the form doc/failure.md's ring table was measured in (the scene ships rings over 0.18 m to 360 us)
     p.add_argument("--extra", default="-ring_seeding lattice -grid_upper 0.12,0.12 -final_time 1.2e-4",
                    help="more burst options for every run, given as --extra='...'")
     args = p.parse_args()
